@@ -1,0 +1,67 @@
+/*
+ * vec3.h — the small amount of 3-vector arithmetic every primitive needs.
+ * Plain double[3] arrays (no struct) so data can be passed straight from the
+ * caller's buffers.
+ */
+#ifndef ISECT_VEC3_H
+#define ISECT_VEC3_H
+
+#include <math.h>
+
+static inline void v3_set(double r[3], double x, double y, double z)
+{
+    r[0] = x; r[1] = y; r[2] = z;
+}
+static inline void v3_copy(double r[3], const double a[3])
+{
+    r[0] = a[0]; r[1] = a[1]; r[2] = a[2];
+}
+static inline void v3_sub(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[0] - b[0]; r[1] = a[1] - b[1]; r[2] = a[2] - b[2];
+}
+static inline void v3_add(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[0] + b[0]; r[1] = a[1] + b[1]; r[2] = a[2] + b[2];
+}
+static inline void v3_scale(double r[3], const double a[3], double s)
+{
+    r[0] = a[0] * s; r[1] = a[1] * s; r[2] = a[2] * s;
+}
+/* r = a + s*b */
+static inline void v3_madd(double r[3], const double a[3], double s, const double b[3])
+{
+    r[0] = a[0] + s * b[0]; r[1] = a[1] + s * b[1]; r[2] = a[2] + s * b[2];
+}
+static inline double v3_dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static inline void v3_cross(double r[3], const double a[3], const double b[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1];
+    double y = a[2] * b[0] - a[0] * b[2];
+    double z = a[0] * b[1] - a[1] * b[0];
+    r[0] = x; r[1] = y; r[2] = z;
+}
+/* |a| without overflow or underflow for any finite a (hypot-style scaling). */
+static inline double v3_norm(const double a[3])
+{
+    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    if (m == 0.0 || !isfinite(m))
+        return m;
+    double x = a[0] / m, y = a[1] / m, z = a[2] / m;
+    return m * sqrt(x * x + y * y + z * z);
+}
+/* r = a/|a|; returns |a| (0 leaves r = 0). */
+static inline double v3_normalize(double r[3], const double a[3])
+{
+    double len = v3_norm(a);
+    if (len > 0.0)
+        v3_scale(r, a, 1.0 / len);
+    else
+        v3_set(r, 0.0, 0.0, 0.0);
+    return len;
+}
+
+#endif /* ISECT_VEC3_H */
