@@ -62,6 +62,41 @@ void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3
 /* ENTER/EXIT from the sign of dir.normal (normal outward or front-facing). */
 int32_t hit_kind_from_normal(const double dir[3], const double normal[3]);
 
+/* A batch record for a ray with no hit (ISECT_MISS: t = +inf) or a bad ray
+ * (ISECT_INVALID: t = NaN); prim -1, everything else 0. */
+void hit_set_miss(isect_hit *h, int32_t kind);
+
+/* Keep the hits with tmin <= t <= tmax (and, for a thin surface under
+ * ISECT_CULL_BACK, drop EXIT hits), sort by (t, prim); returns how many are
+ * kept, compacted to the front of h. */
+int hits_finish(isect_hit *h, int count, const isect_ray *ray, const isect_params *prm,
+                int thin);
+
+/* A validated shape: its family's functions and whether it is a solid. */
+typedef struct shape_family shape_family;
+
+/* Validate s (type, reserved, data, n/flags, xform, geometry); returns its
+ * family, or NULL with *status set to the error. */
+const shape_family *shape_prepare(const isect_shape *s, int *status);
+
+/* All hits of a valid world-space ray with a prepared shape, filtered,
+ * sorted and in world space; count, or ISECT_E_NONFINITE if the transform
+ * takes the ray out of the finite doubles. */
+int shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                   const isect_params *prm, isect_hit out[ISECT_MAX_HITS]);
+
+/* 1 when the shape has an inside (contains() applies), 0 for thin surfaces. */
+int shape_is_solid(const shape_family *f, const isect_shape *s);
+
+/* 1/0 for a finite world-space point of a solid, or ISECT_E_NONFINITE if the
+ * transform takes it out of the finite doubles. */
+int shape_point_inside(const shape_family *f, const isect_shape *s, const double p[3]);
+
+/* Transforms without argument checks, for the dispatcher (xform.c). */
+void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out);
+void xform_point_to_object(const isect_xform *x, const double p[3], double out[3]);
+void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n);
+
 /* Build the descriptor of a scalar call and run it through the shared path. */
 int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
                      isect_hit *hits, int cap);

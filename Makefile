@@ -1,0 +1,142 @@
+# libisect — GNU make build.  `make` builds the shared and static libraries,
+# `make test` runs every test (C unit tests and the golden corpus, plain and
+# under ASan+UBSan, the export check, the corpus regeneration check, pytest),
+# `make bench` the benchmarks, `make install PREFIX=... DESTDIR=...` installs.
+# meson.build builds the same library and runs the same tests.
+
+CC      ?= cc
+PYTHON  ?= python3
+PREFIX  ?= /usr/local
+LIBDIR  ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+DESTDIR ?=
+
+VERSION := $(shell sh scripts/version.sh)
+ABI     := $(shell sh scripts/version.sh abi)
+
+B := build
+# -ffp-contract=off: the exact predicates and the cancellation-free formulas
+# are written for plain IEEE operations; a compiler-fused a*b+c would change
+# their rounding (clang fuses by default).
+WARN    := -std=c99 -Wall -Wextra -Wpedantic -Werror
+OPT     ?= -O2
+LIBCFLAGS := $(WARN) $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden \
+             -DISECT_BUILDING_LIBRARY -Ilibisect/include
+SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+TESTCFLAGS := $(WARN) -O1 -g -Ilibisect/include -Itests/c
+
+SRCS    := $(sort $(wildcard libisect/src/*.c))
+HDRS    := $(wildcard libisect/src/*.h) libisect/include/isect.h
+OBJS    := $(SRCS:libisect/src/%.c=$(B)/obj/%.o)
+SAN_OBJS := $(SRCS:libisect/src/%.c=$(B)/san/obj/%.o)
+
+SONAME  := libisect.so.$(ABI)
+SHLIB   := $(B)/libisect.so.$(VERSION)
+STLIB   := $(B)/libisect.a
+SAN_STLIB := $(B)/san/libisect.a
+
+UNIT_TESTS := $(patsubst tests/c/%.c,%,$(sort $(wildcard tests/c/test_*.c)))
+RUNNER_SRCS := $(filter-out tests/c/test_%.c,$(wildcard tests/c/*.c))
+CJSON   := $(shell pkg-config --libs libcjson 2>/dev/null || echo -lcjson)
+CJSON_CFLAGS := $(shell pkg-config --cflags libcjson 2>/dev/null)
+
+.PHONY: all lib test test-c bench install uninstall clean demo venv
+all: lib
+lib: $(SHLIB) $(B)/$(SONAME) $(B)/libisect.so $(STLIB)
+
+$(B)/obj/%.o: libisect/src/%.c $(HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(LIBCFLAGS) -c $< -o $@
+
+$(B)/san/obj/%.o: libisect/src/%.c $(HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(LIBCFLAGS) $(SANITIZE) -g -c $< -o $@
+
+$(SHLIB): $(OBJS) libisect/isect.map
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--version-script=libisect/isect.map \
+	    -Wl,--no-undefined -o $@ $(OBJS) -lm
+
+$(B)/$(SONAME): $(SHLIB)
+	ln -sf $(notdir $(SHLIB)) $@
+$(B)/libisect.so: $(B)/$(SONAME)
+	ln -sf $(SONAME) $@
+
+$(STLIB): $(OBJS)
+	rm -f $@
+	ar rcs $@ $(OBJS)
+$(SAN_STLIB): $(SAN_OBJS)
+	rm -f $@
+	ar rcs $@ $(SAN_OBJS)
+
+# ---------------------------------------------------------------- tests
+# Unit tests link the shared library (so they see exactly the exported ABI);
+# their sanitized twins link the sanitized static library.
+$(B)/tests/%: tests/c/%.c tests/c/check.h $(B)/$(SONAME) $(B)/libisect.so
+	@mkdir -p $(@D)
+	$(CC) $(TESTCFLAGS) $< -o $@ -L$(B) -lisect -Wl,-rpath,'$$ORIGIN/..' -lm
+$(B)/san/tests/%: tests/c/%.c tests/c/check.h $(SAN_STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(TESTCFLAGS) $(SANITIZE) $< -o $@ $(SAN_STLIB) -lm
+
+$(B)/tests/corpus_runner: $(RUNNER_SRCS) $(wildcard tests/c/*.h) $(B)/$(SONAME) $(B)/libisect.so
+	@mkdir -p $(@D)
+	$(CC) $(TESTCFLAGS) $(CJSON_CFLAGS) $(RUNNER_SRCS) -o $@ -L$(B) -lisect \
+	    -Wl,-rpath,'$$ORIGIN/..' $(CJSON) -lm
+$(B)/san/tests/corpus_runner: $(RUNNER_SRCS) $(wildcard tests/c/*.h) $(SAN_STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(TESTCFLAGS) $(CJSON_CFLAGS) $(SANITIZE) $(RUNNER_SRCS) -o $@ $(SAN_STLIB) $(CJSON) -lm
+
+TEST_BINS := $(UNIT_TESTS:%=$(B)/tests/%) $(UNIT_TESTS:%=$(B)/san/tests/%)
+ifneq ($(RUNNER_SRCS),)
+TEST_BINS += $(B)/tests/corpus_runner $(B)/san/tests/corpus_runner
+endif
+
+test-c: lib $(TEST_BINS)
+
+# The Python environment of the tests (and of the demo): one venv at .venv
+# with the pinned requirements and, once the bindings exist, the package.
+venv: .venv/.stamp
+.venv/.stamp: requirements.txt $(wildcard bindings/python/pyproject.toml)
+	$(PYTHON) -m venv .venv
+	.venv/bin/pip install -q -r requirements.txt
+	@if [ -f bindings/python/pyproject.toml ]; then \
+	    echo ".venv/bin/pip install ./bindings/python"; \
+	    .venv/bin/pip install -q ./bindings/python || exit 1; fi
+	touch $@
+
+test: test-c venv
+	sh scripts/run_tests.sh
+
+# ---------------------------------------------------------------- bench
+$(B)/bench/%: bench/%.c $(STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
+bench: $(B)/bench/bench_batch
+	$(B)/bench/bench_batch
+
+# ---------------------------------------------------------------- demo
+$(B)/examples/demo: examples/demo.c $(STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
+demo: $(B)/examples/demo
+	$(B)/examples/demo
+
+# ---------------------------------------------------------------- install
+install: lib
+	install -d $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
+	install -m 644 libisect/include/isect.h $(DESTDIR)$(INCLUDEDIR)/isect.h
+	install -m 755 $(SHLIB) $(DESTDIR)$(LIBDIR)/
+	ln -sf $(notdir $(SHLIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libisect.so
+	install -m 644 $(STLIB) $(DESTDIR)$(LIBDIR)/libisect.a
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
+	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
+	    libisect/isect.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+
+uninstall:
+	rm -f $(DESTDIR)$(INCLUDEDIR)/isect.h $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
+	      $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libisect.so \
+	      $(DESTDIR)$(LIBDIR)/libisect.a $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+
+clean:
+	rm -rf $(B)

@@ -1,0 +1,103 @@
+/*
+ * batch.c — the loops over many rays or points, written once for every shape.
+ *
+ * The shape and options are validated once per call; a bad ray or point only
+ * marks its own record (ISECT_INVALID) and the loop goes on. Each ray runs
+ * through exactly the same shape_ray_hits() as isect_intersect, so a batch
+ * closest hit is bit for bit the first hit of the scalar call.
+ */
+#include "isect_internal.h"
+
+#include <string.h>
+
+static int batch_args_ok(const void *in, int64_t n, const void *out)
+{
+    return n >= 0 && (n == 0 || (in != NULL && out != NULL));
+}
+
+ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ray *rays,
+                                        int64_t n, const isect_opts *opts,
+                                        isect_hit *closest)
+{
+    if (!batch_args_ok(rays, n, closest))
+        return ISECT_E_ARG;
+    isect_params prm;
+    int status = params_from_opts(opts, &prm);
+    if (status != ISECT_OK)
+        return status;
+    const shape_family *f = shape_prepare(shape, &status);
+    if (f == NULL)
+        return status;
+
+    int64_t hit_count = 0;
+    for (int64_t i = 0; i < n; i++) {
+        isect_hit found[ISECT_MAX_HITS];
+        int count = ray_check(&rays[i]);
+        if (count == ISECT_OK)
+            count = shape_ray_hits(f, shape, &rays[i], &prm, found);
+        if (count > 0) {
+            closest[i] = found[0];
+            hit_count++;
+        } else {
+            hit_set_miss(&closest[i], count < 0 ? ISECT_INVALID : ISECT_MISS);
+        }
+    }
+    return hit_count;
+}
+
+ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isect_ray *rays,
+                                            int64_t n, const isect_opts *opts,
+                                            int64_t *offsets, isect_hit *hits, int64_t cap)
+{
+    if (offsets == NULL || n < 0 || (n > 0 && rays == NULL) || cap < 0
+        || (cap > 0 && hits == NULL))
+        return ISECT_E_ARG;
+    isect_params prm;
+    int status = params_from_opts(opts, &prm);
+    if (status != ISECT_OK)
+        return status;
+    const shape_family *f = shape_prepare(shape, &status);
+    if (f == NULL)
+        return status;
+
+    int64_t total = 0;
+    offsets[0] = 0;
+    for (int64_t i = 0; i < n; i++) {
+        isect_hit found[ISECT_MAX_HITS];
+        int count = ray_check(&rays[i]);
+        if (count == ISECT_OK)
+            count = shape_ray_hits(f, shape, &rays[i], &prm, found);
+        if (count < 0) {
+            /* One record says "this ray was bad" so it is not mistaken for a miss. */
+            hit_set_miss(&found[0], ISECT_INVALID);
+            count = 1;
+        }
+        for (int k = 0; k < count; k++, total++)
+            if (total < cap)
+                hits[total] = found[k];
+        offsets[i + 1] = total;
+    }
+    return total;
+}
+
+ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p, int64_t n,
+                                       uint8_t *inside)
+{
+    if (!batch_args_ok(p, n, inside))
+        return ISECT_E_ARG;
+    int status;
+    const shape_family *f = shape_prepare(shape, &status);
+    if (f == NULL)
+        return status;
+    if (!shape_is_solid(f, shape))
+        return ISECT_E_ARG;
+
+    int64_t inside_count = 0;
+    for (int64_t i = 0; i < n; i++) {
+        const double *q = p + 3 * i;
+        int in = all_finite(q, 3) ? shape_point_inside(f, shape, q) : ISECT_E_NONFINITE;
+        inside[i] = in < 0 ? (uint8_t)ISECT_INVALID : (uint8_t)in;
+        inside_count += in == 1;
+    }
+    return inside_count;
+}

@@ -1,0 +1,63 @@
+/*
+ * hits.c — filling hit records and putting a kernel's hits in the order and
+ * range the API promises. Kernels report every intersection of the ray's
+ * whole line; the range filter, back-face culling and ordering live here.
+ */
+#include "isect_internal.h"
+
+#include "vec3.h"
+
+#include <string.h>
+
+void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3],
+             int32_t prim, int32_t kind)
+{
+    h->t = t;
+    v3_madd(h->point, ray->org, t, ray->dir);
+    v3_copy(h->normal, normal);
+    h->uv[0] = 0.0;
+    h->uv[1] = 0.0;
+    h->prim = prim;
+    h->kind = kind;
+}
+
+int32_t hit_kind_from_normal(const double dir[3], const double normal[3])
+{
+    return v3_dot(dir, normal) < 0.0 ? ISECT_ENTER : ISECT_EXIT;
+}
+
+void hit_set_miss(isect_hit *h, int32_t kind)
+{
+    memset(h, 0, sizeof *h);
+    h->t = kind == ISECT_INVALID ? NAN : INFINITY;
+    h->prim = -1;
+    h->kind = kind;
+}
+
+static int hit_before(const isect_hit *a, const isect_hit *b)
+{
+    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+}
+
+int hits_finish(isect_hit *h, int count, const isect_ray *ray, const isect_params *prm,
+                int thin)
+{
+    int kept = 0;
+    for (int i = 0; i < count; i++) {
+        /* The comparison is false for NaN, so a NaN t can never escape. */
+        if (!(h[i].t >= ray->tmin && h[i].t <= ray->tmax))
+            continue;
+        if (thin && (prm->flags & ISECT_CULL_BACK) && h[i].kind == ISECT_EXIT)
+            continue;
+        h[kept++] = h[i];
+    }
+    /* At most ISECT_MAX_HITS records: insertion sort, stable for equal keys. */
+    for (int i = 1; i < kept; i++) {
+        isect_hit x = h[i];
+        int j = i;
+        for (; j > 0 && hit_before(&x, &h[j - 1]); j--)
+            h[j] = h[j - 1];
+        h[j] = x;
+    }
+    return kept;
+}

@@ -1,0 +1,129 @@
+/*
+ * xform.c — affine object-to-world transforms (the seeds' "transformed
+ * objects"): the ray goes to object space by M^-1, the primitive is hit there,
+ * and the hits come back by M (points) and M^-T (normals). The direction is
+ * mapped as a vector and never renormalised, so t means the same in both
+ * spaces and hits of transformed shapes sort and clip exactly like the rest.
+ */
+#include "isect_internal.h"
+
+#include "vec3.h"
+
+#include <string.h>
+
+/* Rows of the linear part are nearly dependent when the volume they span is
+ * this small relative to the product of their lengths (Hadamard's bound makes
+ * the ratio 1 for orthogonal rows). Scale-invariant; 2^-40 leaves ~12 good
+ * digits in the inverse. */
+#define XFORM_SINGULAR_RATIO 0x1p-40
+
+static void affine_point(const double a[16], const double p[3], double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a[4 * i] * p[0] + a[4 * i + 1] * p[1] + a[4 * i + 2] * p[2] + a[4 * i + 3];
+    v3_copy(out, r);
+}
+
+static void affine_vector(const double a[16], const double v[3], double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a[4 * i] * v[0] + a[4 * i + 1] * v[1] + a[4 * i + 2] * v[2];
+    v3_copy(out, r);
+}
+
+/* n by the transpose of a's linear part: with a = M^-1 this is M^-T n, which
+ * keeps n perpendicular to the mapped surface and on the same (outer) side. */
+static void affine_normal(const double a[16], const double n[3], double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a[i] * n[0] + a[4 + i] * n[1] + a[8 + i] * n[2];
+    v3_normalize(out, r);
+}
+
+ISECT_API int isect_xform_init(isect_xform *x, const double m[16])
+{
+    if (x == NULL || m == NULL)
+        return ISECT_E_ARG;
+    if (!all_finite(m, 16))
+        return ISECT_E_NONFINITE;
+    if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0)
+        return ISECT_E_ARG;
+
+    /* Inverse of the 3x3 part by cofactors: c[i][j] is the cofactor of
+     * m[j][i], so inv = c / det. */
+    double c[9];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+            c[3 * i + j] = m[4 * r0 + c0] * m[4 * r1 + c1] - m[4 * r0 + c1] * m[4 * r1 + c0];
+        }
+    }
+    double det = m[0] * c[0] + m[1] * c[3] + m[2] * c[6];
+    double rows = v3_norm(&m[0]) * v3_norm(&m[4]) * v3_norm(&m[8]);
+    if (!(fabs(det) > XFORM_SINGULAR_RATIO * rows))
+        return ISECT_E_DEGENERATE;
+
+    double inv[16] = {0};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            inv[4 * i + j] = c[3 * i + j] / det;
+    /* Translation of the inverse: -A^-1 t. */
+    double t[3] = { m[3], m[7], m[11] }, it[3];
+    affine_vector(inv, t, it);
+    inv[3] = -it[0];
+    inv[7] = -it[1];
+    inv[11] = -it[2];
+    inv[15] = 1.0;
+    if (!all_finite(inv, 16))
+        return ISECT_E_DEGENERATE; /* det underflowed the division */
+
+    memcpy(x->m, m, sizeof x->m);
+    memcpy(x->inv, inv, sizeof x->inv);
+    return ISECT_OK;
+}
+
+void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out)
+{
+    double org[3], dir[3];
+    affine_point(x->inv, in->org, org);
+    affine_vector(x->inv, in->dir, dir);
+    v3_copy(out->org, org);
+    v3_copy(out->dir, dir);
+    out->tmin = in->tmin;
+    out->tmax = in->tmax;
+}
+
+void xform_point_to_object(const isect_xform *x, const double p[3], double out[3])
+{
+    affine_point(x->inv, p, out);
+}
+
+void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (hits[i].kind == ISECT_MISS || hits[i].kind == ISECT_INVALID)
+            continue;
+        affine_point(x->m, hits[i].point, hits[i].point);
+        affine_normal(x->inv, hits[i].normal, hits[i].normal);
+    }
+}
+
+ISECT_API int isect_xform_ray(const isect_xform *x, const isect_ray *world_ray,
+                              isect_ray *object_ray)
+{
+    if (x == NULL || world_ray == NULL || object_ray == NULL)
+        return ISECT_E_ARG;
+    xform_ray_unchecked(x, world_ray, object_ray);
+    return ISECT_OK;
+}
+
+ISECT_API int isect_xform_hits(const isect_xform *x, isect_hit *hits, int n)
+{
+    if (x == NULL || n < 0 || (n > 0 && hits == NULL))
+        return ISECT_E_ARG;
+    xform_hits_unchecked(x, hits, n);
+    return ISECT_OK;
+}

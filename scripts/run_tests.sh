@@ -1,0 +1,55 @@
+#!/bin/sh
+# Runs every test of the project (the Makefile's `make test` builds them
+# first) and ends with one line "N passed, N failed" summed over all of them.
+# Each step prints its own closing line; a step without counts (a check
+# script) counts as one test by its exit status. Exits non-zero on any failure.
+set -u
+cd "$(dirname "$0")/.."
+B=build
+PY=.venv/bin/python
+total_pass=0
+total_fail=0
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+
+step() {
+    name=$1; shift
+    printf '== %s\n' "$name"
+    "$@" >"$log" 2>&1
+    rc=$?
+    cat "$log"
+    # The last "N passed" / "N failed" figures the step printed (C runners:
+    # "N passed, N failed"; pytest: "N passed, M skipped in 3.2s").
+    p=$(grep -Eo '[0-9]+ passed' "$log" | tail -n 1 | grep -Eo '[0-9]+')
+    f=$(grep -Eo '[0-9]+ failed' "$log" | tail -n 1 | grep -Eo '[0-9]+')
+    if [ -z "$p$f" ]; then
+        if [ $rc -eq 0 ]; then p=1; f=0; else p=0; f=1; fi
+    fi
+    p=${p:-0}; f=${f:-0}
+    if [ $rc -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi  # crashed after counting
+    total_pass=$((total_pass + p))
+    total_fail=$((total_fail + f))
+    [ $rc -eq 0 ] || printf '!! %s exited with status %d\n' "$name" $rc
+}
+
+for t in $B/tests/test_*; do
+    [ -x "$t" ] && step "$(basename "$t")" "$t"
+done
+for t in $B/san/tests/test_*; do
+    [ -x "$t" ] && step "$(basename "$t") [asan+ubsan]" "$t"
+done
+if [ -x $B/tests/corpus_runner ]; then
+    step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
+    step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json
+fi
+step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
+if [ -f tests/golden/generate.py ]; then
+    step "corpus regeneration check" $PY tests/golden/generate.py --check
+fi
+if [ -d tests/python ]; then
+    step "pytest" $PY -m pytest -q tests/python
+fi
+
+echo
+echo "TOTAL: $total_pass passed, $total_fail failed"
+[ "$total_fail" -eq 0 ]

@@ -1,0 +1,36 @@
+/*
+ * corpus_shape.h — a corpus "shape" object as an isect_shape descriptor, and
+ * the call of the type's own scalar function (isect_ray_sphere etc.) on it.
+ */
+#ifndef ISECT_CORPUS_SHAPE_H
+#define ISECT_CORPUS_SHAPE_H
+
+#include "corpus_json.h"
+#include "isect.h"
+
+typedef struct corpus_shape {
+    isect_shape desc; /* xform is left NULL; the checks set it */
+    double *data;     /* owned; desc.data points here (or is NULL) */
+    int named;        /* 1 for a "type" given by name: it has a scalar function */
+} corpus_shape;
+
+/* Parse the case's "shape" object. A named type reads its keys as in
+ * tests/cases/README.md. An integer type is passed through raw (bad-input
+ * cases) and takes the key layout of the first named type whose keys are all
+ * present, so {"type": 99, "center": .., "radius": ..} carries sphere data;
+ * with no matching keys data is NULL. Returns 1, or 0 with *err set. */
+int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err);
+
+void corpus_shape_free(corpus_shape *s);
+
+/* Run the scalar function of a named type with the descriptor's numbers, in
+ * the argument order the header gives; s->xform is ignored. */
+int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
+                        isect_hit *hits, int cap);
+
+/* A fill rule at obj[key]: "evenodd", "nonzero", or an integer passed
+ * through unchecked (bad-input cases); ISECT_EVEN_ODD when absent. */
+int corpus_rule_parse(const cJSON *obj, const char *parent, const char *key, int32_t *rule,
+                      cj_error *err);
+
+#endif /* ISECT_CORPUS_SHAPE_H */
