@@ -40,7 +40,7 @@ RUNNER_SRCS := $(filter-out tests/c/test_%.c,$(wildcard tests/c/*.c))
 CJSON   := $(shell pkg-config --libs libcjson 2>/dev/null || echo -lcjson)
 CJSON_CFLAGS := $(shell pkg-config --cflags libcjson 2>/dev/null)
 
-.PHONY: all lib test test-c bench install uninstall clean demo venv
+.PHONY: all lib test test-c bench install uninstall clean demo venv deps
 all: lib
 lib: $(SHLIB) $(B)/$(SONAME) $(B)/libisect.so $(STLIB)
 
@@ -104,7 +104,14 @@ venv: .venv/.stamp
 	    .venv/bin/pip install -q ./bindings/python || exit 1; fi
 	touch $@
 
-test: test-c venv
+# Debian packages the tests and the demo need (apt-get when root and missing).
+deps:
+	bash scripts/install_deps.sh
+
+# deps runs first, in its own make, so the rest sees the installed tools.
+test:
+	$(MAKE) --no-print-directory deps
+	$(MAKE) --no-print-directory test-c venv
 	sh scripts/run_tests.sh
 
 # ---------------------------------------------------------------- bench
@@ -118,7 +125,9 @@ bench: $(B)/bench/bench_batch
 $(B)/examples/demo: examples/demo.c $(STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
-demo: $(B)/examples/demo
+demo:
+	$(MAKE) --no-print-directory deps
+	$(MAKE) --no-print-directory $(B)/examples/demo
 	$(B)/examples/demo
 
 # ---------------------------------------------------------------- install

@@ -43,6 +43,8 @@ if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json
 fi
 step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
+step "clang -Werror build" make --no-print-directory -s CC=clang B=$B/clang lib
+step "meson build and tests" sh scripts/meson_check.sh
 if [ -f tests/golden/generate.py ]; then
     step "corpus regeneration check" $PY tests/golden/generate.py --check
 fi

@@ -1,0 +1,44 @@
+/*
+ * predicates.h — exact sign predicates in the plane, and the tie-breaking
+ * rule every point-in-polygon and ray/face decision of the library uses.
+ *
+ * Exactness range. The signs below are exact for every input whose nonzero
+ * coordinates have magnitudes in [2^-480, 2^500]: then each coordinate is
+ * a multiple of 2^-532, every product the evaluation forms is a multiple of
+ * 2^-1064 (so no product loses bits to underflow) and no sum exceeds 2^1010
+ * (no overflow). Outside that range the result is still a deterministic
+ * function of the input and still antisymmetric (orient2_sign(b, a, c) ==
+ * -orient2_sign(a, b, c)), so shared edges stay consistent, but a nearly
+ * zero determinant may get the wrong sign.
+ */
+#ifndef ISECT_PREDICATES_H
+#define ISECT_PREDICATES_H
+
+/* Sign of (a - c) x (b - c): +1 when a, b, c turn counter-clockwise, -1
+ * clockwise, 0 collinear. Shewchuk-style floating-point filter, then an
+ * exact expansion sum where the filter cannot decide. */
+int orient2_sign(const double a[2], const double b[2], const double c[2]);
+
+/* The sign after moving the query point c by (-e^2, -e), e > 0
+ * infinitesimal (the "move the ray up epsilon" rule made exact): a vertex
+ * with y == c.y counts as above c, a horizontal edge on c's line crosses
+ * nothing. Nonzero unless p == q. Antisymmetric in p, q. */
+int orient2_sign_perturbed(const double p[2], const double q[2], const double c[2]);
+
+/* Winding-number contribution (+1, -1 or 0) of the edge p -> q around c
+ * under the same perturbation: +1 for an upward crossing with c on its
+ * left, -1 for a downward crossing with c on its right (Sunday 2001;
+ * Hormann & Agathos 2001). Summed over a closed polygon it is the winding
+ * number of the perturbed point, which is never on an edge. */
+int winding_edge(const double p[2], const double q[2], const double c[2]);
+
+/* 1 when a, b, c lie exactly on one line in 3D (coincident points
+ * included): each coordinate-plane projection has a zero orientation. */
+int collinear3(const double a[3], const double b[3], const double c[3]);
+
+/* a*d - b*c with relative error <= 2u by Kahan's FMA algorithm
+ * (Jeannerod, Louvet & Muller, Math. Comp. 2013); away from underflow the
+ * result is zero exactly when a*d == b*c and otherwise has the right sign. */
+double det2_accurate(double a, double b, double c, double d);
+
+#endif /* ISECT_PREDICATES_H */
