@@ -119,7 +119,7 @@ extern "C" {
 #define ISECT_CYLINDER_INF 8  /* data: p[3], axis[3], r                             */
 #define ISECT_ELLIPSOID    9  /* data: c[3], radii[3]                               */
 #define ISECT_QUADRIC      10 /* data: q[10] = A..J                                 */
-#define ISECT_MESH         11 /* mesh: a mesh handle (reserved; meshes come in a later release) */
+#define ISECT_MESH         11 /* mesh: a handle from isect_mesh_create; data NULL */
 
 /* Polygon fill rules (isect_shape.flags for ISECT_POLYGON). */
 #define ISECT_EVEN_ODD 0 /* inside where the crossing number is odd */
@@ -193,7 +193,30 @@ typedef struct isect_xform {
     double inv[16];
 } isect_xform;
 
-typedef struct isect_mesh isect_mesh; /* opaque; reserved for meshes */
+/* A closed or open polygon mesh with its BVH: opaque, immutable after
+ * isect_mesh_create, safe to query from many threads at once. */
+typedef struct isect_mesh isect_mesh;
+
+/* What isect_mesh_check finds. 128 bytes. Edges are undirected vertex pairs
+ * of face boundaries. */
+typedef struct isect_mesh_report {
+    int64_t vertices;             /* vertices referenced by at least one face */
+    int64_t edges;
+    int64_t faces;
+    int64_t boundary_edges;       /* used by exactly one face */
+    int64_t nonmanifold_edges;    /* used by three or more faces */
+    int64_t misoriented_edges;    /* used twice in the same direction */
+    int64_t degenerate_faces;     /* zero area (never hit) */
+    int64_t components;           /* connected through shared edges */
+    int64_t euler_characteristic; /* V - E + F */
+    int64_t genus;                /* closed oriented surfaces: sum over components of
+                                     (2 - chi_c)/2; -1 when not closed and oriented */
+    int32_t closed;               /* 1: no boundary and no non-manifold edges */
+    int32_t oriented;             /* 1: no misoriented edges */
+    double  volume;               /* signed (divergence theorem); > 0 for outward faces */
+    double  area;
+    int64_t reserved[3];
+} isect_mesh_report;
 
 /* One descriptor for every primitive. 40 bytes on 64-bit targets.
  *  type      ISECT_PLANE ... ISECT_MESH.
@@ -203,7 +226,7 @@ typedef struct isect_mesh isect_mesh; /* opaque; reserved for meshes */
  *  reserved  must be 0.
  *  data      the primitive's numbers in the order of its scalar function's
  *            arguments (see the shape-type list above); not copied.
- *  mesh      ISECT_MESH only; else NULL.
+ *  mesh      ISECT_MESH only (then data is NULL and n, flags 0); else NULL.
  *  xform     NULL, or the object-to-world transform: the ray is taken to
  *            object space by inv, hits are returned in world space (t kept,
  *            points by m, normals by the inverse transpose, renormalised). */
@@ -350,6 +373,28 @@ ISECT_API int64_t isect_point_in_polygon2_batch(const double *poly, int n, const
 ISECT_API int64_t isect_winding_number2_batch(const double *poly, int n, const double *pts,
                                               int64_t m, int32_t *winding);
 
+/* ---------------------------------------------------------------- meshes */
+
+/* Build a mesh from verts[nv][3] and faces. offsets == NULL: triangles,
+ * idx[3*nf]. Otherwise face f is the polygon idx[offsets[f] .. offsets[f+1])
+ * (offsets[nf+1], offsets[0] == 0, increasing by at least 3), planar, convex
+ * or concave, vertex order giving the outward normal by the right-hand rule.
+ * The input is copied. ISECT_E_ARG for NULL, nv or nf < 0, an index outside
+ * [0, nv), or bad offsets; ISECT_E_NONFINITE for NaN/Inf vertices;
+ * ISECT_E_NOMEM. Degenerate faces are kept (never hit) and reported by
+ * isect_mesh_check. On error *out is NULL. */
+ISECT_API int isect_mesh_create(const double *verts, int64_t nv, const int32_t *idx,
+                                const int64_t *offsets, int64_t nf, isect_mesh **out);
+
+/* Free a mesh; NULL is a no-op. */
+ISECT_API void isect_mesh_destroy(isect_mesh *mesh);
+
+/* Topology and measures of the mesh (see isect_mesh_report). */
+ISECT_API int isect_mesh_check(const isect_mesh *mesh, isect_mesh_report *report);
+
+/* Bytes the mesh occupies (its copy of the input and the BVH). */
+ISECT_API int64_t isect_mesh_bytes(const isect_mesh *mesh);
+
 /* ------------------------------------------------------------ transforms */
 
 /* Fill x from the row-major object-to-world matrix m[16]. ISECT_E_ARG if
@@ -397,7 +442,8 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
                                             int64_t *offsets, isect_hit *hits, int64_t cap);
 
 /* Point containment for solids: sphere, aabb, convex, capped cylinder,
- * infinite cylinder, ellipsoid, quadric (and closed meshes). Analytic solids
+ * infinite cylinder, ellipsoid, quadric, and closed meshes (exact crossing
+ * parity; a mesh with boundary edges is ISECT_E_ARG). Analytic solids
  * are closed sets: a point with F(p) <= 0 evaluated in double precision is
  * inside. Degenerate solids contain nothing. 1 inside, 0 outside;
  * ISECT_E_ARG for a thin surface (plane, triangle, polygon, open cylinder);

@@ -3,8 +3,8 @@
  *
  * The shape and options are validated once per call; a bad ray or point only
  * marks its own record (ISECT_INVALID) and the loop goes on. Each ray runs
- * through exactly the same shape_ray_hits() as isect_intersect, so a batch
- * closest hit is bit for bit the first hit of the scalar call.
+ * through the same shape_ray_hits() / shape_ray_first() as isect_intersect,
+ * so a batch closest hit is bit for bit the first hit of the scalar call.
  */
 #include "isect_internal.h"
 
@@ -31,16 +31,13 @@ ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ra
 
     int64_t hit_count = 0;
     for (int64_t i = 0; i < n; i++) {
-        isect_hit found[ISECT_MAX_HITS];
-        int count = ray_check(&rays[i]);
-        if (count == ISECT_OK)
-            count = shape_ray_hits(f, shape, &rays[i], &prm, found);
-        if (count > 0) {
-            closest[i] = found[0];
+        int found = ray_check(&rays[i]);
+        if (found == ISECT_OK)
+            found = shape_ray_first(f, shape, &rays[i], &prm, &closest[i]);
+        if (found > 0)
             hit_count++;
-        } else {
-            hit_set_miss(&closest[i], count < 0 ? ISECT_INVALID : ISECT_MISS);
-        }
+        else
+            hit_set_miss(&closest[i], found < 0 ? ISECT_INVALID : ISECT_MISS);
     }
     return hit_count;
 }
@@ -63,18 +60,20 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
     int64_t total = 0;
     offsets[0] = 0;
     for (int64_t i = 0; i < n; i++) {
-        isect_hit found[ISECT_MAX_HITS];
-        int count = ray_check(&rays[i]);
+        /* Hits go straight into the caller's buffer while it has room; past
+         * cap they are only counted, so offsets stay complete. */
+        int64_t room = total < cap ? cap - total : 0;
+        isect_hit *dest = room > 0 ? hits + total : NULL;
+        int64_t count = ray_check(&rays[i]);
         if (count == ISECT_OK)
-            count = shape_ray_hits(f, shape, &rays[i], &prm, found);
+            count = shape_ray_hits(f, shape, &rays[i], &prm, dest, room);
         if (count < 0) {
             /* One record says "this ray was bad" so it is not mistaken for a miss. */
-            hit_set_miss(&found[0], ISECT_INVALID);
+            if (room > 0)
+                hit_set_miss(dest, ISECT_INVALID);
             count = 1;
         }
-        for (int k = 0; k < count; k++, total++)
-            if (total < cap)
-                hits[total] = found[k];
+        total += count;
         offsets[i + 1] = total;
     }
     return total;

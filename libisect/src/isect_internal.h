@@ -79,11 +79,18 @@ typedef struct shape_family shape_family;
  * family, or NULL with *status set to the error. */
 const shape_family *shape_prepare(const isect_shape *s, int *status);
 
-/* All hits of a valid world-space ray with a prepared shape, filtered,
- * sorted and in world space; count, or ISECT_E_NONFINITE if the transform
- * takes the ray out of the finite doubles. */
-int shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_ray *ray,
-                   const isect_params *prm, isect_hit out[ISECT_MAX_HITS]);
+/* All hits of a valid world-space ray with a prepared shape in [tmin, tmax],
+ * sorted, the first min(count, cap) written in world space; returns count,
+ * or ISECT_E_NONFINITE if the transform takes the ray out of the finite
+ * doubles. */
+int64_t shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                       const isect_params *prm, isect_hit *hits, int64_t cap);
+
+/* The first of those hits alone (bit for bit the record shape_ray_hits
+ * would write first; any hit under ISECT_ANY_HIT): 1 and *out, 0, or
+ * ISECT_E_NONFINITE as above. */
+int shape_ray_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                    const isect_params *prm, isect_hit *out);
 
 /* 1 when the shape has an inside (contains() applies), 0 for thin surfaces. */
 int shape_is_solid(const shape_family *f, const isect_shape *s);

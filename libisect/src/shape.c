@@ -8,6 +8,7 @@
  */
 #include "isect_internal.h"
 
+#include <limits.h>
 #include <string.h>
 
 enum solidity {
@@ -16,22 +17,53 @@ enum solidity {
     SURFACE_SOLID_IF_CAPPED  /* finite cylinder: a solid only with ISECT_CAPPED */
 };
 
+typedef int64_t (*hits_all_fn)(const shape_family *f, const isect_shape *s,
+                               const isect_ray *ray, const isect_params *prm,
+                               isect_hit *hits, int64_t cap);
+typedef int (*hit_first_fn)(const shape_family *f, const isect_shape *s,
+                            const isect_ray *ray, const isect_params *prm, isect_hit *out);
+
 struct shape_family {
     int (*check)(const isect_shape *s);
+    /* Analytic shapes: every hit of the line, at most ISECT_MAX_HITS. */
     int (*hits)(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                 isect_hit out[ISECT_MAX_HITS]);
     int (*contains)(const isect_shape *s, const double p[3]);
+    /* All hits in range, sorted, the first cap written; and the first alone. */
+    hits_all_fn hits_all;
+    hit_first_fn hit_first;
     enum solidity solidity;
     int uses_n;     /* isect_shape.n carries a count */
     int uses_flags; /* isect_shape.flags carries a rule or ISECT_CAPPED */
 };
 
-#define FAMILY(X, solidity, uses_n, uses_flags) \
-    { X##_check, X##_hits, X##_contains, solidity, uses_n, uses_flags }
-#define THIN_FAMILY(X, uses_n, uses_flags) \
-    { X##_check, X##_hits, NULL, SURFACE_THIN, uses_n, uses_flags }
+/* The two query paths of the analytic shapes, over their bounded kernel. */
+static int64_t analytic_hits_all(const shape_family *f, const isect_shape *s,
+                                 const isect_ray *ray, const isect_params *prm,
+                                 isect_hit *hits, int64_t cap)
+{
+    isect_hit found[ISECT_MAX_HITS];
+    int count = f->hits(s, ray, prm, found);
+    count = hits_finish(found, count, ray, prm, !shape_is_solid(f, s));
+    if (count > 0 && cap > 0)
+        memcpy(hits, found, (size_t)(count < cap ? count : cap) * sizeof *hits);
+    return count;
+}
 
-/* Indexed by shape type; entry 0 and ISECT_MESH (not yet built) are empty. */
+static int analytic_hit_first(const shape_family *f, const isect_shape *s,
+                              const isect_ray *ray, const isect_params *prm, isect_hit *out)
+{
+    return analytic_hits_all(f, s, ray, prm, out, 1) > 0;
+}
+
+#define FAMILY(X, solidity, uses_n, uses_flags)                                 \
+    { X##_check, X##_hits, X##_contains, analytic_hits_all, analytic_hit_first, \
+      solidity, uses_n, uses_flags }
+#define THIN_FAMILY(X, uses_n, uses_flags)                                      \
+    { X##_check, X##_hits, NULL, analytic_hits_all, analytic_hit_first,         \
+      SURFACE_THIN, uses_n, uses_flags }
+
+/* Indexed by shape type; entry 0 is empty so a zeroed descriptor is rejected. */
 static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_PLANE]        = THIN_FAMILY(plane, 0, 0),
     [ISECT_SPHERE]       = FAMILY(sphere, SURFACE_SOLID, 0, 0),
@@ -57,7 +89,10 @@ const shape_family *shape_prepare(const isect_shape *s, int *status)
     if (s == NULL || s->type <= 0 || s->type > ISECT_MESH || s->reserved != 0)
         return NULL;
     const shape_family *f = &families[s->type];
-    if (f->check == NULL || s->data == NULL || s->mesh != NULL)
+    if (f->check == NULL)
+        return NULL;
+    int is_mesh = s->type == ISECT_MESH;
+    if ((s->data == NULL) != is_mesh || (s->mesh != NULL) != is_mesh)
         return NULL;
     if ((!f->uses_n && s->n != 0) || (!f->uses_flags && s->flags != 0))
         return NULL;
@@ -69,26 +104,48 @@ const shape_family *shape_prepare(const isect_shape *s, int *status)
     return *status == ISECT_OK ? f : NULL;
 }
 
-int shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_ray *ray,
-                   const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
+/* The object-space ray of a valid world ray: *r points at ray itself, or at
+ * tmp holding the transformed ray. A huge inverse can overflow a fine ray. */
+static int object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
+                      const isect_ray **r)
 {
-    isect_ray object_ray;
-    const isect_ray *r = ray;
-    if (s->xform != NULL) {
-        /* A huge inverse can overflow an otherwise fine ray. */
-        xform_ray_unchecked(s->xform, ray, &object_ray);
-        int status = ray_check(&object_ray);
-        if (status != ISECT_OK)
-            return status;
-        r = &object_ray;
-    }
-    int count = f->hits(s, r, prm, out);
-    /* t is the same in both frames (dir is mapped, not renormalised), so the
-     * range filter and the ordering can run before going back to world space. */
-    count = hits_finish(out, count, r, prm, !shape_is_solid(f, s));
-    if (s->xform != NULL)
-        xform_hits_unchecked(s->xform, out, count);
+    *r = ray;
+    if (s->xform == NULL)
+        return ISECT_OK;
+    xform_ray_unchecked(s->xform, ray, tmp);
+    *r = tmp;
+    return ray_check(tmp);
+}
+
+/* t is the same in both frames (dir is mapped, not renormalised), so range
+ * filtering and ordering happen in object space; only the written records
+ * go back to world space. */
+int64_t shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                       const isect_params *prm, isect_hit *hits, int64_t cap)
+{
+    isect_ray tmp;
+    const isect_ray *r;
+    int status = object_ray(s, ray, &tmp, &r);
+    if (status != ISECT_OK)
+        return status;
+    int64_t count = f->hits_all(f, s, r, prm, hits, cap);
+    if (s->xform != NULL && count > 0)
+        xform_hits_unchecked(s->xform, hits, (int)(count < cap ? count : cap));
     return count;
+}
+
+int shape_ray_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                    const isect_params *prm, isect_hit *out)
+{
+    isect_ray tmp;
+    const isect_ray *r;
+    int status = object_ray(s, ray, &tmp, &r);
+    if (status != ISECT_OK)
+        return status;
+    int found = f->hit_first(f, s, r, prm, out);
+    if (s->xform != NULL && found)
+        xform_hits_unchecked(s->xform, out, 1);
+    return found;
 }
 
 int shape_point_inside(const shape_family *f, const isect_shape *s, const double p[3])
@@ -102,8 +159,8 @@ int shape_point_inside(const shape_family *f, const isect_shape *s, const double
     return f->contains(s, q);
 }
 
-int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
-                     isect_hit *hits, int cap)
+ISECT_API int isect_intersect(const isect_shape *shape, const isect_ray *ray,
+                              const isect_opts *opts, isect_hit *hits, int cap)
 {
     if (ray == NULL || cap < 0 || (hits == NULL && cap > 0))
         return ISECT_E_ARG;
@@ -111,23 +168,20 @@ int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opt
     int status = params_from_opts(opts, &prm);
     if (status != ISECT_OK)
         return status;
-    const shape_family *f = shape_prepare(s, &status);
+    const shape_family *f = shape_prepare(shape, &status);
     if (f == NULL)
         return status;
     status = ray_check(ray);
     if (status != ISECT_OK)
         return status;
-    isect_hit found[ISECT_MAX_HITS];
-    int count = shape_ray_hits(f, s, ray, &prm, found);
-    if (count > 0 && cap > 0)
-        memcpy(hits, found, (size_t)(count < cap ? count : cap) * sizeof *hits);
-    return count;
+    int64_t count = shape_ray_hits(f, shape, ray, &prm, hits, cap);
+    return count > INT_MAX ? INT_MAX : (int)count;
 }
 
-ISECT_API int isect_intersect(const isect_shape *shape, const isect_ray *ray,
-                              const isect_opts *opts, isect_hit *hits, int cap)
+int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
+                     isect_hit *hits, int cap)
 {
-    return scalar_intersect(shape, ray, opts, hits, cap);
+    return isect_intersect(s, ray, opts, hits, cap);
 }
 
 ISECT_API int isect_contains(const isect_shape *shape, const double p[3])
