@@ -96,7 +96,7 @@ test-c: lib $(TEST_BINS)
 # The Python environment of the tests (and of the demo): one venv at .venv
 # with the pinned requirements and, once the bindings exist, the package.
 venv: .venv/.stamp
-.venv/.stamp: requirements.txt $(wildcard bindings/python/pyproject.toml)
+.venv/.stamp: requirements.txt $(SRCS) $(HDRS) $(shell find bindings/python -name '*.py' -o -name '*.h' -o -name '*.toml' 2>/dev/null | grep -v egg-info)
 	$(PYTHON) -m venv .venv
 	.venv/bin/pip install -q -r requirements.txt
 	@if [ -f bindings/python/pyproject.toml ]; then \
@@ -111,15 +111,21 @@ deps:
 # deps runs first, in its own make, so the rest sees the installed tools.
 test:
 	$(MAKE) --no-print-directory deps
-	$(MAKE) --no-print-directory test-c venv
+	$(MAKE) --no-print-directory test-c test-fortran venv
 	sh scripts/run_tests.sh
 
 # ---------------------------------------------------------------- bench
 $(B)/bench/%: bench/%.c $(STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
-bench: $(B)/bench/bench_batch
+# The mesh benchmark compares with Embree 3 (Debian libembree-dev).
+$(B)/bench/bench_mesh: bench/bench_mesh.c $(STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lembree3 -lm
+bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
 	$(B)/bench/bench_batch
+	$(B)/bench/bench_mesh
+	.venv/bin/python bench/python_bench.py
 
 # ---------------------------------------------------------------- demo
 $(B)/examples/demo: examples/demo.c $(STLIB)
@@ -149,3 +155,6 @@ uninstall:
 
 clean:
 	rm -rf $(B)
+
+# Fortran module, Fortran tests, installed-examples test, ABI baseline.
+include mk/fortran.mk

@@ -9,7 +9,7 @@ exported=$(mktemp); declared=$(mktemp)
 trap 'rm -f "$exported" "$declared"' EXIT
 nm -D --defined-only "$lib" | awk '$2 ~ /^[TDBR]$/ {print $3}' | sed 's/@.*//' \
     | grep -v '^ISECT_[0-9_.]*$' | sort -u >"$exported"
-tr '\n' ' ' <"$header" | grep -Eo 'ISECT_API[^;(]*\(' \
+grep -v '^ *#' "$header" | tr '\n' ' ' | grep -Eo 'ISECT_API[^;(]*\(' \
     | sed -E 's/.*[^A-Za-z0-9_](isect_[A-Za-z0-9_]+) *\($/\1/' | sort -u >"$declared"
 status=0
 if grep -v '^isect_' "$exported"; then

@@ -5,7 +5,8 @@
 # lists what is missing.
 set -euo pipefail
 packages=(build-essential clang meson ninja-build pkg-config libcjson-dev
-          python3 python3-venv binutils)
+          python3 python3-venv binutils gfortran abigail-tools
+          libembree-dev)
 need=()
 for pkg in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' \

@@ -42,6 +42,12 @@ if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json
 fi
+step "fortran layout and constants" $B/fortran/test_layout libisect/include/isect.h
+step "fortran module forms" $B/fortran/test_forms
+step "golden corpus (Fortran)" $B/fortran/corpus_runner tests/cases/flat/*.txt
+step "flat corpus export check" $PY tests/golden/export_flat.py --check
+step "installed C and Fortran examples" sh tests/install/test_installed.sh
+step "ABI check (abidiff)" sh tests/abi/check_abi.sh
 step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
 step "clang -Werror build" make --no-print-directory -s CC=clang B=$B/clang lib
 step "meson build and tests" sh scripts/meson_check.sh

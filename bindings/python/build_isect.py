@@ -2,11 +2,13 @@
 
 The C sources of libisect are compiled *into* the extension module, so the
 installed package needs no shared library at run time. setup.py names this file
-in ``cffi_modules``; running it directly (``python build_isect.py``) builds the
-extension in place next to the package sources, for quick experiments.
+in ``cffi_modules``.
 
-The sources are looked up in two places, first match wins:
+The sources are looked up in these places, first match wins:
 
+0. the directory named by the environment variable ``ISECT_LIBISECT_DIR``
+   (it must hold ``include/isect.h`` and ``src/*.c``), to build against
+   another copy of the library;
 1. ``_libisect/`` next to this file: the copy that ``setup.py sdist`` puts into
    a source distribution, so an sdist builds on its own;
 2. ``../../libisect/``: the library in the repository (``pip install
@@ -26,12 +28,17 @@ HERE = Path(os.path.abspath(os.path.dirname(__file__)))
 
 def find_libisect() -> Path:
     """Return the directory that holds ``include/isect.h`` and ``src/*.c``."""
-    for candidate in (HERE / "_libisect", HERE.parent.parent / "libisect"):
+    override = os.environ.get("ISECT_LIBISECT_DIR")
+    if override:
+        candidates = [Path(override).resolve()]
+    else:
+        candidates = [HERE / "_libisect", HERE.parent.parent / "libisect"]
+    for candidate in candidates:
         if (candidate / "include" / "isect.h").is_file() and (candidate / "src").is_dir():
             return candidate
     raise RuntimeError(
-        "libisect sources not found: expected bindings/python/_libisect/ (sdist) "
-        "or libisect/ two levels above bindings/python/ (repository checkout)"
+        "libisect sources not found: looked for include/isect.h and src/ in "
+        + ", ".join(str(c) for c in candidates)
     )
 
 
@@ -50,6 +57,9 @@ def make_ffibuilder() -> FFI:
     """Create the FFI builder: cdef from isect_cdef.h, sources from libisect."""
     root = find_libisect()
     sources = sorted(str(p) for p in (root / "src").glob("*.c"))
+    # Headers are listed so that a rebuild in a used tree (bindings/python/build
+    # left by an earlier pip install) is triggered by a header change too.
+    headers = [root / "include" / "isect.h", HERE / "isect_cdef.h", *(root / "src").glob("*.h")]
     builder = FFI()
     builder.cdef((HERE / "isect_cdef.h").read_text(encoding="utf-8"))
     builder.set_source(
@@ -60,11 +70,9 @@ def make_ffibuilder() -> FFI:
         define_macros=[("ISECT_STATIC", None)],
         extra_compile_args=compile_args(),
         libraries=[] if sys.platform == "win32" else ["m"],
+        depends=sorted(str(p) for p in headers),
     )
     return builder
 
 
 ffibuilder = make_ffibuilder()
-
-if __name__ == "__main__":
-    ffibuilder.compile(tmpdir=str(HERE / "src"), verbose=True)

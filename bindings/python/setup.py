@@ -5,18 +5,16 @@ from __future__ import annotations
 
 import re
 import shutil
+import sys
 from pathlib import Path
 
 from setuptools import setup
 from setuptools.command.sdist import sdist
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
 
-
-def libisect_root() -> Path:
-    """The libisect tree: the sdist's bundled copy, else the repository's."""
-    bundled = HERE / "_libisect"
-    return bundled if bundled.is_dir() else HERE.parent.parent / "libisect"
+from build_isect import find_libisect as libisect_root  # noqa: E402
 
 
 def read_version() -> str:
@@ -32,6 +30,7 @@ class SdistWithLibisect(sdist):
     """sdist that copies libisect/include and libisect/src into _libisect/."""
 
     def make_release_tree(self, base_dir: str, files: list[str]) -> None:
+        """Build the release tree, then add the libisect sources."""
         super().make_release_tree(base_dir, files)
         src = libisect_root()
         dst = Path(base_dir) / "_libisect"

@@ -17,10 +17,12 @@
  *    (exit) when strictly later (earlier); each axis contributes one entry
  *    and one exit face, so the first axis to reach the extreme value, i.e. the
  *    lowest index, keeps it.
- *  - entry == exit: the line meets the closed box in a single point, an edge
- *    or a corner it grazes. One TOUCH hit, reported with the ENTRY face's
- *    index and outward normal (the exit face is a different axis, so this
- *    picks the one the line reached "first" in the scan order above).
+ *  - entry == exit: the line meets the closed box in a single point, on an
+ *    edge or a corner it grazes. That point is a tie between the entry face
+ *    and the exit face, so the same rule applies: one TOUCH hit with the
+ *    lower of the two indices and that face's outward normal (which is the
+ *    lowest index of all faces the line crosses there). Its point lies on
+ *    both faces and is snapped onto both planes.
  *  - Ties and TOUCH are decided on the computed t values, which are correctly
  *    rounded quotients whenever lo - org (resp. hi - org) is exact, as it is
  *    for the dyadic coordinates of test cases; two exactly equal slab
@@ -39,13 +41,14 @@
 #include <float.h>
 
 /*
- * Ray parameter at which coordinate o + t*d reaches `plane`, for d != 0.
- * (plane - o) is finite for finite inputs except when both are near
- * +-DBL_MAX with opposite signs; then both are halved first (exact at that
- * magnitude) and the quotient doubled, which gives the same correctly rounded
- * result as the unbounded-exponent computation, or +-inf when t itself is
- * beyond the double range. Otherwise a finite numerator over a nonzero d is
- * never NaN; a tiny d may give +-inf, which the comparisons handle.
+ * Ray parameter at which coordinate o + t*d reaches `plane`, for d != 0:
+ * (plane - o)/d, two roundings, the quotient correctly rounded from the
+ * difference. The difference is finite for finite inputs unless both are
+ * near +-DBL_MAX with opposite signs; then both are halved first (exact at
+ * that magnitude) and the quotient doubled, which is bit for bit the plain
+ * formula evaluated with an unbounded exponent, or +-inf when t itself is
+ * beyond the double range. A finite numerator over a nonzero d is never NaN;
+ * a tiny d may give +-inf, which the comparisons handle.
  */
 static inline double slab_t(double plane, double o, double d)
 {
@@ -58,24 +61,27 @@ static inline double slab_t(double plane, double o, double d)
 /*
  * Fill one hit on `face`. The point is org + t*dir, then pulled onto the
  * surface it is known to lie on: the coordinate across `face` (and across
- * `also_on`, the exit face of a TOUCH, which the point lies on as well) is
+ * `also_on`, the other face of a TOUCH, which the point lies on as well) is
  * set to that face's plane exactly, and the others are clamped into
  * [lo, hi]. That removes the rounding of org + t*dir, and keeps the point
- * finite even where t*dir overflows.
+ * finite even where t*dir overflows. bound = lo[3], hi[3], so face f's plane
+ * is bound[3*(f & 1) + f/2]: indexed, not branched on.
  */
-static inline void box_hit(isect_hit *h, const isect_ray *ray, const double *lo,
-                           const double *hi, double t, int face, int also_on, int32_t kind)
+static inline void box_hit(isect_hit *h, const isect_ray *ray, const double *bound, double t,
+                           int face, int also_on, int32_t kind)
 {
     t += 0.0; /* -0.0 -> +0.0 (round-to-nearest); (0 - o)/-d gives -0.0 */
     h->t = t;
     for (int a = 0; a < 3; a++) {
         double p = ray->org[a] + t * ray->dir[a];
-        h->point[a] = p < lo[a] ? lo[a] : (p > hi[a] ? hi[a] : p);
+        p = bound[a] > p ? bound[a] : p;         /* maxsd */
+        p = bound[a + 3] < p ? bound[a + 3] : p; /* minsd */
+        h->point[a] = p;
         h->normal[a] = 0.0;
     }
-    h->point[face >> 1] = (face & 1) ? hi[face >> 1] : lo[face >> 1];
-    h->point[also_on >> 1] = (also_on & 1) ? hi[also_on >> 1] : lo[also_on >> 1];
-    h->normal[face >> 1] = (face & 1) ? 1.0 : -1.0;
+    h->point[also_on >> 1] = bound[3 * (also_on & 1) + (also_on >> 1)];
+    h->point[face >> 1] = bound[3 * (face & 1) + (face >> 1)]; /* wins if same axis */
+    h->normal[face >> 1] = (double)(2 * (face & 1) - 1);
     h->uv[0] = 0.0;
     h->uv[1] = 0.0;
     h->prim = face;
@@ -96,32 +102,38 @@ int aabb_check(const isect_shape *s)
 int aabb_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
               isect_hit out[ISECT_MAX_HITS])
 {
-    const double *lo = s->data, *hi = s->data + 3;
+    const double *bound = s->data; /* lo[3], hi[3] */
     double t_enter = -INFINITY, t_exit = INFINITY;
     int face_enter = -1, face_exit = -1;
     (void)prm; /* no tolerance: faces are exact planes, corners are ties */
 
+    /* The outcomes below are data-dependent (random rays mispredict half of
+     * them), so the per-axis work is written as indexed loads, min/max
+     * selects and masks rather than branches. The branches left are taken
+     * the same way for almost every ray: a flat box, a zero dir component,
+     * the overflow fallback in slab_t. */
     for (int a = 0; a < 3; a++) {
         double o = ray->org[a], d = ray->dir[a];
-        if (!(lo[a] < hi[a]))
+        double lo = bound[a], hi = bound[a + 3];
+        if (!(lo < hi))
             return 0; /* flat: degenerate */
         if (d == 0.0) {
-            if (o < lo[a] || o > hi[a])
+            if (o < lo || o > hi)
                 return 0;
             continue; /* the slab is (-inf, inf): it never wins a comparison */
         }
-        double t_lo = slab_t(lo[a], o, d), t_hi = slab_t(hi[a], o, d);
-        int backward = d < 0.0; /* the line meets hi before lo */
-        double t_near = backward ? t_hi : t_lo;
-        double t_far = backward ? t_lo : t_hi;
-        if (t_near > t_enter) {
-            t_enter = t_near;
-            face_enter = 2 * a + backward;
-        }
-        if (t_far < t_exit) {
-            t_exit = t_far;
-            face_exit = 2 * a + 1 - backward;
-        }
+        /* Going backwards (d < 0) the line meets hi first: near face 2a+1. */
+        int backward = d < 0.0;
+        double t_near = slab_t(bound[3 * backward + a], o, d);
+        double t_far = slab_t(bound[3 * (1 - backward) + a], o, d);
+        /* Strict comparisons: on a tie the earlier axis, i.e. the lower face
+         * index, keeps its place (the tied values are equal, up to the sign
+         * of a zero, which box_hit drops). */
+        int later = t_near > t_enter, earlier = t_far < t_exit;
+        face_enter ^= (face_enter ^ (2 * a + backward)) & -later;
+        face_exit ^= (face_exit ^ (2 * a + 1 - backward)) & -earlier;
+        t_enter = t_enter < t_near ? t_near : t_enter; /* maxsd */
+        t_exit = t_exit > t_far ? t_far : t_exit;       /* minsd */
     }
 
     if (t_enter > t_exit)
@@ -131,16 +143,17 @@ int aabb_hits(const isect_shape *s, const isect_ray *ray, const isect_params *pr
     if (t_enter == t_exit) {
         if (!isfinite(t_enter))
             return 0;
-        box_hit(&out[0], ray, lo, hi, t_enter, face_enter, face_exit, ISECT_TOUCH);
+        int low = face_enter < face_exit ? face_enter : face_exit;
+        box_hit(&out[0], ray, bound, t_enter, low, face_enter + face_exit - low, ISECT_TOUCH);
         return 1;
     }
     int count = 0;
     if (isfinite(t_enter)) {
-        box_hit(&out[count], ray, lo, hi, t_enter, face_enter, face_enter, ISECT_ENTER);
+        box_hit(&out[count], ray, bound, t_enter, face_enter, face_enter, ISECT_ENTER);
         count++;
     }
     if (isfinite(t_exit)) {
-        box_hit(&out[count], ray, lo, hi, t_exit, face_exit, face_exit, ISECT_EXIT);
+        box_hit(&out[count], ray, bound, t_exit, face_exit, face_exit, ISECT_EXIT);
         count++;
     }
     return count;
@@ -155,8 +168,8 @@ int aabb_contains(const isect_shape *s, const double p[3])
     return inside;
 }
 
-int isect_ray_aabb(const isect_ray *ray, const double lo[3], const double hi[3],
-                   const isect_opts *opts, isect_hit *hits, int cap)
+ISECT_API int isect_ray_aabb(const isect_ray *ray, const double lo[3], const double hi[3],
+                             const isect_opts *opts, isect_hit *hits, int cap)
 {
     if (lo == NULL || hi == NULL)
         return ISECT_E_ARG;

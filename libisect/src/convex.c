@@ -17,7 +17,9 @@
  *    computed t_i (no exact arithmetic), so two planes through the same edge
  *    tie when their t_i round to the same double.
  *  - enterMax == exitMin: the line only touches the closed set (an edge or a
- *    vertex): one TOUCH hit with the ENTERING plane's index and normal.
+ *    vertex), a tie between the entering and the leaving plane: one TOUCH
+ *    hit with the lower of the two indices and that plane's normal (the
+ *    lowest index of all planes the line crosses there).
  *  - enterMax > exitMin: miss. Otherwise ENTER at enterMax if some plane is
  *    entered and EXIT at exitMin if some plane is left; an unbounded
  *    polyhedron may give only one of them, or none (the line lies inside).
@@ -35,15 +37,22 @@
 #include "isect_internal.h"
 #include "vec3.h"
 
+/* v' = v * 2^-e with e the exponent of max|v_i| (frexp), so max|v'_i| is in
+ * [0.5, 1); returns e. A zero vector stays zero (e = 0). */
+static int scale_to_unit_exponent(double out[3], const double v[3])
+{
+    int e;
+    (void)frexp(fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))), &e);
+    for (int k = 0; k < 3; k++)
+        out[k] = ldexp(v[k], -e);
+    return e;
+}
+
 /* Plane i scaled as described above: n' = n * 2^-e, d' = d * 2^-e. */
 static void load_plane(const double *planes, int i, double n[3], double *d)
 {
     const double *pl = planes + 4 * (int64_t)i;
-    int e;
-    (void)frexp(fmax(fabs(pl[0]), fmax(fabs(pl[1]), fabs(pl[2]))), &e);
-    for (int k = 0; k < 3; k++)
-        n[k] = ldexp(pl[k], -e);
-    *d = ldexp(pl[3], -e);
+    *d = ldexp(pl[3], -scale_to_unit_exponent(n, pl));
 }
 
 /* n_i/|n_i| from the scaled normal (no overflow at any scale); nonzero. */
@@ -67,10 +76,7 @@ int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
                 isect_hit out[ISECT_MAX_HITS])
 {
     double dir[3];
-    int e_dir;
-    (void)frexp(fmax(fabs(ray->dir[0]), fmax(fabs(ray->dir[1]), fabs(ray->dir[2]))), &e_dir);
-    for (int k = 0; k < 3; k++)
-        dir[k] = ldexp(ray->dir[k], -e_dir);
+    int e_dir = scale_to_unit_exponent(dir, ray->dir);
     double dir_len = sqrt(v3_dot(dir, dir));
 
     double t_enter = -INFINITY, t_exit = INFINITY; /* in units of the scaled dir */
@@ -106,12 +112,19 @@ int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
     t_exit = ldexp(t_exit, -e_dir) + 0.0;
     int count = 0;
     double normal[3];
+    if (touch) {
+        if (!isfinite(t_enter))
+            return 0;
+        int low = plane_enter < plane_exit ? plane_enter : plane_exit;
+        unit_normal(s->data, low, normal);
+        hit_set(&out[0], ray, t_enter, normal, low, ISECT_TOUCH);
+        return 1;
+    }
     if (isfinite(t_enter)) {
         unit_normal(s->data, plane_enter, normal);
-        hit_set(&out[count++], ray, t_enter, normal, plane_enter,
-                touch ? ISECT_TOUCH : ISECT_ENTER);
+        hit_set(&out[count++], ray, t_enter, normal, plane_enter, ISECT_ENTER);
     }
-    if (!touch && isfinite(t_exit)) {
+    if (isfinite(t_exit)) {
         unit_normal(s->data, plane_exit, normal);
         hit_set(&out[count++], ray, t_exit, normal, plane_exit, ISECT_EXIT);
     }
@@ -129,8 +142,8 @@ int convex_contains(const isect_shape *s, const double p[3])
     return 1;
 }
 
-int isect_ray_convex(const isect_ray *ray, const double *planes, int m,
-                     const isect_opts *opts, isect_hit *hits, int cap)
+ISECT_API int isect_ray_convex(const isect_ray *ray, const double *planes, int m,
+                               const isect_opts *opts, isect_hit *hits, int cap)
 {
     isect_shape s = { ISECT_CONVEX, m, 0, 0, planes, NULL, NULL };
     return scalar_intersect(&s, ray, opts, hits, cap);

@@ -25,14 +25,14 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
                         isect_hit *out);
 
 /* The plane of the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
- * v + 3*i), n >= 3: unit Newell normal with vertices taken relative to the
+ * v + 3*i; the caller has checked every idx[i]), n >= 3: unit Newell normal with vertices taken relative to the
  * centroid, and the centroid. 1, or 0 (normal and centroid zero) for a
  * polygon of zero area: all vertices exactly collinear, or a zero normal. */
 int polygon_plane(const double *v, const int32_t *idx, int n, double normal[3],
                   double centroid[3]);
 
 /* Polygon with a plane from polygon_plane (for callers that keep it per
- * face): 1 and *out or 0. rule ISECT_EVEN_ODD (odd winding number) or
+ * face), f the frame of ray: 1 and *out or 0. rule ISECT_EVEN_ODD (odd winding number) or
  * ISECT_NONZERO. t from the plane through the centroid; uv = 0. */
 int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
                              const isect_params *prm, const double *v, const int32_t *idx,

@@ -10,9 +10,9 @@
  * one of the plane as given:
  *   parallel  |n'.dir'| <= eps |n'| |dir'|   (the policy test, scale-free)
  *   t         -(n'.org + d') / (n'.dir') * 2^-e_dir
- * A t beyond the double range (possible only with eps = 0 and a nearly
- * parallel ray, or coordinates near DBL_MAX) is not a point of the ray and is
- * not reported, so no inf or NaN reaches the output.
+ * A t beyond the double range (a nearly parallel ray with eps near 0, or
+ * coordinates near DBL_MAX) is not a point of the ray and is not reported,
+ * so no inf or NaN reaches the output. t = 0 is reported as +0.0.
  */
 #include "isect_internal.h"
 #include "vec3.h"
@@ -48,7 +48,7 @@ int plane_hits(const isect_shape *s, const isect_ray *ray, const isect_params *p
     if (fabs(n_dot_dir) <= prm->eps * n_len * sqrt(v3_dot(dir, dir)))
         return 0; /* parallel, including a ray lying in the plane */
 
-    double t = ldexp(-(v3_dot(n, ray->org) + d) / n_dot_dir, -e_dir);
+    double t = ldexp(-(v3_dot(n, ray->org) + d) / n_dot_dir, -e_dir) + 0.0;
     if (!isfinite(t))
         return 0;
     for (int i = 0; i < 3; i++)
@@ -58,8 +58,8 @@ int plane_hits(const isect_shape *s, const isect_ray *ray, const isect_params *p
     return 1;
 }
 
-int isect_ray_plane(const isect_ray *ray, const double n[3], double d,
-                    const isect_opts *opts, isect_hit *hits, int cap)
+ISECT_API int isect_ray_plane(const isect_ray *ray, const double n[3], double d,
+                              const isect_opts *opts, isect_hit *hits, int cap)
 {
     if (n == NULL)
         return ISECT_E_ARG;

@@ -21,8 +21,10 @@
  * l, r the two computed products (Shewchuk's ccwerrboundA). */
 #define ORIENT2_FILTER ((3.0 + 16.0 * UNIT_ROUNDOFF) * UNIT_ROUNDOFF)
 
-/* Below this the bound itself would be a subnormal and lose its relative
- * accuracy; such tiny determinants go to the exact evaluation instead. */
+/* The bound assumes relative rounding errors. With detsum >= 2^-960 the
+ * larger product is normal and a subnormal smaller one errs by at most
+ * 2^-1075 <= 2^-115 detsum, inside the bound's 16u^2 slack; smaller
+ * determinants (possibly underflowed) go to the exact evaluation. */
 #define ORIENT2_FILTER_MIN 0x1p-960
 
 /* x + y = *s + *e exactly, |*e| <= ulp(*s)/2 (Knuth's TwoSum; no branch on
@@ -54,24 +56,30 @@ typedef struct expansion {
     int    count;
 } expansion;
 
-/* Shewchuk's GROW-EXPANSION with zero elimination: adding one double
- * lengthens the expansion by at most one component. */
-static void expansion_add(expansion *x, double b)
+/* Shewchuk's GROW-EXPANSION with zero elimination on part[0 .. *count):
+ * adding one double lengthens the expansion by at most one component (the
+ * caller provides room for one more). */
+static void parts_add(double *part, int *count, double b)
 {
     if (b == 0.0)
         return;
     double carry = b;
     int kept = 0;
-    for (int i = 0; i < x->count; i++) {
+    for (int i = 0; i < *count; i++) {
         double sum, err;
-        two_sum(carry, x->part[i], &sum, &err);
+        two_sum(carry, part[i], &sum, &err);
         if (err != 0.0)
-            x->part[kept++] = err;
+            part[kept++] = err;
         carry = sum;
     }
     if (carry != 0.0)
-        x->part[kept++] = carry;
-    x->count = kept;
+        part[kept++] = carry;
+    *count = kept;
+}
+
+static void expansion_add(expansion *x, double b)
+{
+    parts_add(x->part, &x->count, b);
 }
 
 /* Adds sign * (x_hi + x_lo) * (y_hi + y_lo) exactly: four products, each
@@ -92,15 +100,31 @@ static void expansion_add_product(expansion *acc, double sign, double x_hi, doub
     }
 }
 
-/* The slow path: each difference split exactly into head + tail (TwoSum of
- * a and -c), the determinant expanded into its 8 products and summed. */
+/* The slow path. The sign is invariant under scaling all six coordinates by
+ * one power of two, so they are first brought to a largest magnitude in
+ * [1, 2) (exact unless the input spans more than ~2^1000): then no product
+ * overflows and, for coordinates within 2^480 of the largest, none loses
+ * bits to underflow. Each difference is split exactly into head + tail
+ * (TwoSum of x and -y) and the determinant expanded into its 8 products. */
 static int orient2_exact(const double a[2], const double b[2], const double c[2])
 {
+    double m = 0.0;
+    for (int k = 0; k < 2; k++)
+        m = fmax(m, fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k]))));
+    if (m == 0.0)
+        return 0;
+    int e = -ilogb(m);
+    double sa[2], sb[2], sc[2];
+    for (int k = 0; k < 2; k++) {
+        sa[k] = ldexp(a[k], e);
+        sb[k] = ldexp(b[k], e);
+        sc[k] = ldexp(c[k], e);
+    }
     double acx, acx_t, acy, acy_t, bcx, bcx_t, bcy, bcy_t;
-    two_sum(a[0], -c[0], &acx, &acx_t);
-    two_sum(a[1], -c[1], &acy, &acy_t);
-    two_sum(b[0], -c[0], &bcx, &bcx_t);
-    two_sum(b[1], -c[1], &bcy, &bcy_t);
+    two_sum(sa[0], -sc[0], &acx, &acx_t);
+    two_sum(sa[1], -sc[1], &acy, &acy_t);
+    two_sum(sb[0], -sc[0], &bcx, &bcx_t);
+    two_sum(sb[1], -sc[1], &bcy, &bcy_t);
     expansion det = { { 0.0 }, 0 };
     expansion_add_product(&det, 1.0, acx, acx_t, bcy, bcy_t);
     expansion_add_product(&det, -1.0, acy, acy_t, bcx, bcx_t);
@@ -118,15 +142,16 @@ int orient2_sign(const double a[2], const double b[2], const double c[2])
     double det = left - right;
     double detsum = fabs(left) + fabs(right);
     if (detsum >= ORIENT2_FILTER_MIN) {
+        /* An overflowed detsum makes the bound infinite: both tests fail. */
         double bound = ORIENT2_FILTER * detsum;
         if (det > bound)
             return 1;
         if (-det > bound)
             return -1;
-    } else if (detsum == 0.0) {
-        /* In the exactness range a zero product means an exactly zero
-         * difference (fl(x - y) == 0 only when x == y), so both exact
-         * products vanish. */
+    } else if ((acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0)) {
+        /* Each product has a factor that is exactly zero (fl(x - y) == 0
+         * only when x == y, so its tail is zero too): the common case of a
+         * vertex on the query point or an axis-parallel edge through it. */
         return 0;
     }
     return orient2_exact(a, b, c);
@@ -182,4 +207,95 @@ double det2_accurate(double a, double b, double c, double d)
     double bc_err = fma(-b, c, bc); /* bc - b*c, exact */
     double diff = fma(a, d, -bc);   /* a*d - bc, one rounding */
     return diff + bc_err;
+}
+
+/* --------------------------------------------------------------- orient3 */
+
+/* Shewchuk's o3derrboundA: the filter's evaluation below carries at most
+ * (7u + 56u^2) times the permanent of rounding error. */
+#define ORIENT3_FILTER ((7.0 + 56.0 * UNIT_ROUNDOFF) * UNIT_ROUNDOFF)
+
+/* As ORIENT2_FILTER_MIN: below this the bound is no longer relative. */
+#define ORIENT3_FILTER_MIN 0x1p-900
+
+/* Components of the exact orient3 expansion: 6 terms of 8 triple products
+ * of two-part factors, each split into 4 doubles, and GROW-EXPANSION adds
+ * at most one component per double added. */
+#define ORIENT3_PARTS 192
+
+/* The slow path: scaled as in orient2_exact (a power of two, exact), each
+ * difference split into head + tail by TwoSum, and the determinant
+ * (a-d) . ((b-d) x (c-d)) expanded into its 48 triple products of parts,
+ * each exact as four doubles (TwoProduct of the first two factors, then of
+ * both halves by the third). */
+static int orient3_exact(const double a[3], const double b[3], const double c[3],
+                         const double d[3])
+{
+    double m = 0.0;
+    for (int k = 0; k < 3; k++)
+        m = fmax(m, fmax(fmax(fabs(a[k]), fabs(b[k])), fmax(fabs(c[k]), fabs(d[k]))));
+    if (m == 0.0)
+        return 0;
+    int e = -ilogb(m);
+    double diff[3][3][2]; /* [point a, b, c][axis][head, tail] of point - d */
+    const double *pts[3] = { a, b, c };
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            two_sum(ldexp(pts[i][k], e), -ldexp(d[k], e), &diff[i][k][0], &diff[i][k][1]);
+    /* det = sum over permutations (i, j, l) of the axes of sign * a_i b_j c_l. */
+    static const int perm[6][3] = { { 0, 1, 2 }, { 1, 2, 0 }, { 2, 0, 1 },
+                                    { 0, 2, 1 }, { 1, 0, 2 }, { 2, 1, 0 } };
+    double part[ORIENT3_PARTS];
+    int count = 0;
+    for (int t = 0; t < 6; t++) {
+        double sign = t < 3 ? 1.0 : -1.0;
+        for (int x = 0; x < 2; x++) {
+            double fa = sign * diff[0][perm[t][0]][x];
+            if (fa == 0.0)
+                continue;
+            for (int y = 0; y < 2; y++) {
+                double fb = diff[1][perm[t][1]][y];
+                if (fb == 0.0)
+                    continue;
+                double p, pe;
+                two_product(fa, fb, &p, &pe);
+                for (int z = 0; z < 2; z++) {
+                    double fc = diff[2][perm[t][2]][z];
+                    if (fc == 0.0)
+                        continue;
+                    double q[4];
+                    two_product(p, fc, &q[1], &q[0]);
+                    two_product(pe, fc, &q[3], &q[2]);
+                    for (int i = 0; i < 4; i++)
+                        parts_add(part, &count, q[i]);
+                }
+            }
+        }
+    }
+    if (count == 0)
+        return 0;
+    return part[count - 1] > 0.0 ? 1 : -1;
+}
+
+int orient3_sign(const double a[3], const double b[3], const double c[3], const double d[3])
+{
+    double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+    double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+    double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+    double bc_x = bdx * cdy, cb_x = bdy * cdx;
+    double ca_x = cdx * ady, ac_x = cdy * adx;
+    double ab_x = adx * bdy, ba_x = ady * bdx;
+    double det = adz * (bc_x - cb_x) + bdz * (ca_x - ac_x) + cdz * (ab_x - ba_x);
+    double permanent = (fabs(bc_x) + fabs(cb_x)) * fabs(adz)
+                     + (fabs(ca_x) + fabs(ac_x)) * fabs(bdz)
+                     + (fabs(ab_x) + fabs(ba_x)) * fabs(cdz);
+    if (permanent >= ORIENT3_FILTER_MIN) {
+        /* An overflowed permanent makes the bound infinite: both tests fail. */
+        double bound = ORIENT3_FILTER * permanent;
+        if (det > bound)
+            return 1;
+        if (-det > bound)
+            return -1;
+    }
+    return orient3_exact(a, b, c, d);
 }

@@ -2,17 +2,21 @@
  * predicates.h — exact sign predicates in the plane, and the tie-breaking
  * rule every point-in-polygon and ray/face decision of the library uses.
  *
- * Exactness range. The signs below are exact for every input whose nonzero
- * coordinates have magnitudes in [2^-480, 2^500]: then each coordinate is
- * a multiple of 2^-532, every product the evaluation forms is a multiple of
- * 2^-1064 (so no product loses bits to underflow) and no sum exceeds 2^1010
- * (no overflow). Outside that range the result is still a deterministic
- * function of the input and still antisymmetric (orient2_sign(b, a, c) ==
- * -orient2_sign(a, b, c)), so shared edges stay consistent, but a nearly
- * zero determinant may get the wrong sign.
+ * Exactness range. The signs below are exact for every finite input whose
+ * nonzero coordinates lie within a factor 2^480 of the largest one, at any
+ * absolute scale: the slow path first scales all coordinates by one power
+ * of two (exact) to a largest magnitude in [1, 2), so no product overflows,
+ * every coordinate is a multiple of 2^-532 and every product a multiple of
+ * 2^-1064, which no TwoProduct error term loses to underflow. Outside that
+ * range the result is still a deterministic function of the input and
+ * still antisymmetric (orient2_sign(b, a, c) == -orient2_sign(a, b, c)), so
+ * shared edges stay consistent, but a nearly zero determinant may get the
+ * wrong sign.
  */
 #ifndef ISECT_PREDICATES_H
 #define ISECT_PREDICATES_H
+
+#include "isect.h"
 
 /* Sign of (a - c) x (b - c): +1 when a, b, c turn counter-clockwise, -1
  * clockwise, 0 collinear. Shewchuk-style floating-point filter, then an
@@ -32,9 +36,31 @@ int orient2_sign_perturbed(const double p[2], const double q[2], const double c[
  * number of the perturbed point, which is never on an edge. */
 int winding_edge(const double p[2], const double q[2], const double c[2]);
 
+/* A polygon fill rule of isect.h, and whether a winding number is inside
+ * under it (even-odd: the crossing number's parity, which equals the
+ * winding number's). */
+static inline int fill_rule_valid(int rule)
+{
+    return rule == ISECT_EVEN_ODD || rule == ISECT_NONZERO;
+}
+static inline int fill_rule_inside(int32_t winding, int rule)
+{
+    return rule == ISECT_NONZERO ? winding != 0 : winding % 2 != 0;
+}
+
 /* 1 when a, b, c lie exactly on one line in 3D (coincident points
  * included): each coordinate-plane projection has a zero orientation. */
 int collinear3(const double a[3], const double b[3], const double c[3]);
+
+/* Sign of det[a - d; b - d; c - d] = (a - d) . ((b - a) x (c - a)): +1 when
+ * d lies below the plane through a, b, c (the side opposite to their
+ * right-hand normal), -1 above, 0 when the four points are coplanar
+ * (Shewchuk's orient3d: a floating-point filter with his error bound, then
+ * an exact expansion where the filter cannot decide). Exact for finite
+ * input whose nonzero coordinates lie within a factor 2^260 of the largest
+ * (the exact path scales by a power of two as orient2's does, and its
+ * triple products must not underflow); outside that range deterministic. */
+int orient3_sign(const double a[3], const double b[3], const double c[3], const double d[3]);
 
 /* a*d - b*c with relative error <= 2u by Kahan's FMA algorithm
  * (Jeannerod, Louvet & Muller, Math. Comp. 2013); away from underflow the

@@ -18,7 +18,7 @@ void ray_frame_shear(const isect_ray *ray, ray_frame *f)
     int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
     /* (kx, ky, kz) is a cyclic, right-handed permutation; when z runs
      * against dir[kz] swapping x and y keeps the frame right-handed, so a
-     * counter-clockwise face in the frame faces away from the ray. */
+     * face counter-clockwise in the frame has its normal along the ray. */
     if (d[kz] < 0.0) {
         int swap = kx;
         kx = ky;

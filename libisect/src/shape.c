@@ -7,6 +7,7 @@
  * exist once. The per-type work is the family table below.
  */
 #include "isect_internal.h"
+#include "mesh.h"
 
 #include <limits.h>
 #include <string.h>
@@ -14,7 +15,9 @@
 enum solidity {
     SURFACE_THIN,            /* plane, triangle, polygon */
     SURFACE_SOLID,           /* has an inside: contains() works, hits are ENTER/EXIT */
-    SURFACE_SOLID_IF_CAPPED  /* finite cylinder: a solid only with ISECT_CAPPED */
+    SURFACE_SOLID_IF_CAPPED, /* finite cylinder: a solid only with ISECT_CAPPED */
+    SURFACE_SOLID_IF_CLOSED  /* mesh: a solid only when closed (no boundary or
+                                non-manifold edge) */
 };
 
 typedef int64_t (*hits_all_fn)(const shape_family *f, const isect_shape *s,
@@ -75,12 +78,15 @@ static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_CYLINDER_INF] = FAMILY(cylinder_inf, SURFACE_SOLID, 0, 0),
     [ISECT_ELLIPSOID]    = FAMILY(ellipsoid, SURFACE_SOLID, 0, 0),
     [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
+    [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_hits_all, mesh_hit_first,
+                             SURFACE_SOLID_IF_CLOSED, 0, 0 },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
 {
     return f->solidity == SURFACE_SOLID
-        || (f->solidity == SURFACE_SOLID_IF_CAPPED && (s->flags & ISECT_CAPPED));
+        || (f->solidity == SURFACE_SOLID_IF_CAPPED && (s->flags & ISECT_CAPPED))
+        || (f->solidity == SURFACE_SOLID_IF_CLOSED && mesh_is_closed(s->mesh));
 }
 
 const shape_family *shape_prepare(const isect_shape *s, int *status)

@@ -53,15 +53,20 @@ static inline double v3_norm(const double a[3])
     double x = a[0] / m, y = a[1] / m, z = a[2] / m;
     return m * sqrt(x * x + y * y + z * z);
 }
-/* r = a/|a|; returns |a| (0 leaves r = 0). */
+/* r = a/|a|; returns |a| (0 leaves r = 0). Divides by the largest
+ * component first, so a vector of subnormal length (whose reciprocal length
+ * would overflow) still comes out unit. */
 static inline double v3_normalize(double r[3], const double a[3])
 {
-    double len = v3_norm(a);
-    if (len > 0.0)
-        v3_scale(r, a, 1.0 / len);
-    else
+    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    if (!(m > 0.0) || !isfinite(m)) {
         v3_set(r, 0.0, 0.0, 0.0);
-    return len;
+        return m;
+    }
+    double x = a[0] / m, y = a[1] / m, z = a[2] / m;
+    double s = sqrt(x * x + y * y + z * z);
+    v3_set(r, x / s, y / s, z / s);
+    return m * s;
 }
 
 #endif /* ISECT_VEC3_H */

@@ -52,24 +52,33 @@ ISECT_API int isect_xform_init(isect_xform *x, const double m[16])
     if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0)
         return ISECT_E_ARG;
 
-    /* Inverse of the 3x3 part by cofactors: c[i][j] is the cofactor of
-     * m[j][i], so inv = c / det. */
+    /* Work on the rows scaled to unit length (A = diag(len) U): the
+     * singularity test is then |det U| <= 2^-40 whatever the scale, and the
+     * cofactors of U cannot overflow or underflow. A^-1 = U^-1 diag(1/len). */
+    double len[3], u[9];
+    for (int i = 0; i < 3; i++) {
+        len[i] = v3_norm(&m[4 * i]);
+        if (!(len[i] > 0.0))
+            return ISECT_E_DEGENERATE;
+        for (int j = 0; j < 3; j++)
+            u[3 * i + j] = m[4 * i + j] / len[i];
+    }
+    /* Cofactors: c[i][j] is the cofactor of u[j][i], so U^-1 = c / det. */
     double c[9];
     for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++) {
             int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
-            c[3 * i + j] = m[4 * r0 + c0] * m[4 * r1 + c1] - m[4 * r0 + c1] * m[4 * r1 + c0];
+            c[3 * i + j] = u[3 * r0 + c0] * u[3 * r1 + c1] - u[3 * r0 + c1] * u[3 * r1 + c0];
         }
     }
-    double det = m[0] * c[0] + m[1] * c[3] + m[2] * c[6];
-    double rows = v3_norm(&m[0]) * v3_norm(&m[4]) * v3_norm(&m[8]);
-    if (!(fabs(det) > XFORM_SINGULAR_RATIO * rows))
+    double det = u[0] * c[0] + u[1] * c[3] + u[2] * c[6];
+    if (!(fabs(det) > XFORM_SINGULAR_RATIO))
         return ISECT_E_DEGENERATE;
 
     double inv[16] = {0};
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
-            inv[4 * i + j] = c[3 * i + j] / det;
+            inv[4 * i + j] = c[3 * i + j] / det / len[j];
     /* Translation of the inverse: -A^-1 t. */
     double t[3] = { m[3], m[7], m[11] }, it[3];
     affine_vector(inv, t, it);
@@ -78,7 +87,7 @@ ISECT_API int isect_xform_init(isect_xform *x, const double m[16])
     inv[11] = -it[2];
     inv[15] = 1.0;
     if (!all_finite(inv, 16))
-        return ISECT_E_DEGENERATE; /* det underflowed the division */
+        return ISECT_E_DEGENERATE; /* an entry of the inverse overflowed */
 
     memcpy(x->m, m, sizeof x->m);
     memcpy(x->inv, inv, sizeof x->inv);

@@ -147,7 +147,7 @@ static int opts_flags_parse(const cJSON *obj, uint32_t *flags, cj_error *err)
                 return cj_fail(err, "field \"%s\": unknown flag \"%s\"", path, flag->valuestring);
             *flags |= (uint32_t)entry->value;
         } else {
-            long long raw;
+            long long raw = 0;
             if (!cj_integer_value(flag, path, 0, UINT32_MAX, &raw, err))
                 return cj_fail(err, "field \"%s\" must be a flag name or an integer", path);
             *flags |= (uint32_t)raw;
@@ -210,8 +210,8 @@ static int case_flags_check(const cJSON *item, cj_error *err)
 static int expected_hit_parse(const cJSON *hit, const char *path, corpus_expected_hit *h,
                               cj_error *err)
 {
-    long long prim;
-    int kind;
+    long long prim = 0;
+    int kind = ISECT_MISS;
     if (!cJSON_IsObject(hit))
         return cj_fail(err, "field \"%s\" must be an object", path);
     if (!cj_number(hit, path, "t", &h->t, err) ||
@@ -255,7 +255,7 @@ static int expected_hits_parse(const cJSON *expect, corpus_case *c, cj_error *er
 static int expect_parse(const cJSON *item, corpus_case *c, cj_error *err)
 {
     const cJSON *expect = object_field(item, "expect", 1, err);
-    long long value;
+    long long value = 0;
     if (expect == NULL || !enum_parse(expect, "expect", "status", status_names, &c->status, err))
         return 0;
     if (c->status != ISECT_OK)

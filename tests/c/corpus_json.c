@@ -120,6 +120,7 @@ cJSON *cj_load_file(const char *path, cj_error *err)
 
 int cj_number_value(const cJSON *item, const char *path, double *out, cj_error *err)
 {
+    *out = 0.0; /* defined even on failure, so no caller can read garbage */
     if (cJSON_IsNumber(item)) {
         *out = item->valuedouble;
         return 1;
@@ -163,6 +164,7 @@ int cj_integer_value(const cJSON *item, const char *path, long long lo, long lon
                      long long *out, cj_error *err)
 {
     double v;
+    *out = 0;
     if (item == NULL)
         return cj_fail(err, "field \"%s\" is missing", path);
     if (!cJSON_IsNumber(item))
@@ -190,6 +192,7 @@ int cj_string(const cJSON *obj, const char *parent, const char *key, const char 
 {
     char path[160];
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(obj, key);
+    *out = "";
     cj_path(path, sizeof path, parent, key);
     if (item == NULL)
         return cj_fail(err, "field \"%s\" is missing", path);

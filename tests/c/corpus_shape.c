@@ -21,20 +21,31 @@ typedef struct shape_key {
 typedef struct shape_layout {
     const char *name;
     int32_t type;
+    const char *function; /* the scalar function, for messages */
     shape_key keys[3];
 } shape_layout;
 
 static const shape_layout layouts[] = {
-    { "plane", ISECT_PLANE, { { "normal", 3 }, { "d", 1 }, { NULL, 0 } } },
-    { "sphere", ISECT_SPHERE, { { "center", 3 }, { "radius", 1 }, { NULL, 0 } } },
-    { "box", ISECT_AABB, { { "lo", 3 }, { "hi", 3 }, { NULL, 0 } } },
-    { "triangle", ISECT_TRIANGLE, { { "a", 3 }, { "b", 3 }, { "c", 3 } } },
-    { "polygon", ISECT_POLYGON, { { "vertices", -3 }, { NULL, 0 }, { NULL, 0 } } },
-    { "convex", ISECT_CONVEX, { { "planes", -4 }, { NULL, 0 }, { NULL, 0 } } },
-    { "cylinder", ISECT_CYLINDER, { { "p0", 3 }, { "p1", 3 }, { "radius", 1 } } },
-    { "infinite_cylinder", ISECT_CYLINDER_INF, { { "point", 3 }, { "axis", 3 }, { "radius", 1 } } },
-    { "ellipsoid", ISECT_ELLIPSOID, { { "center", 3 }, { "radii", 3 }, { NULL, 0 } } },
-    { "quadric", ISECT_QUADRIC, { { "coeffs", 10 }, { NULL, 0 }, { NULL, 0 } } },
+    { "plane", ISECT_PLANE, "isect_ray_plane",
+      { { "normal", 3 }, { "d", 1 }, { NULL, 0 } } },
+    { "sphere", ISECT_SPHERE, "isect_ray_sphere",
+      { { "center", 3 }, { "radius", 1 }, { NULL, 0 } } },
+    { "box", ISECT_AABB, "isect_ray_aabb",
+      { { "lo", 3 }, { "hi", 3 }, { NULL, 0 } } },
+    { "triangle", ISECT_TRIANGLE, "isect_ray_triangle",
+      { { "a", 3 }, { "b", 3 }, { "c", 3 } } },
+    { "polygon", ISECT_POLYGON, "isect_ray_polygon",
+      { { "vertices", -3 }, { NULL, 0 }, { NULL, 0 } } },
+    { "convex", ISECT_CONVEX, "isect_ray_convex",
+      { { "planes", -4 }, { NULL, 0 }, { NULL, 0 } } },
+    { "cylinder", ISECT_CYLINDER, "isect_ray_cylinder",
+      { { "p0", 3 }, { "p1", 3 }, { "radius", 1 } } },
+    { "infinite_cylinder", ISECT_CYLINDER_INF, "isect_ray_cylinder_inf",
+      { { "point", 3 }, { "axis", 3 }, { "radius", 1 } } },
+    { "ellipsoid", ISECT_ELLIPSOID, "isect_ray_ellipsoid",
+      { { "center", 3 }, { "radii", 3 }, { NULL, 0 } } },
+    { "quadric", ISECT_QUADRIC, "isect_ray_quadric",
+      { { "coeffs", 10 }, { NULL, 0 }, { NULL, 0 } } },
 };
 #define LAYOUT_COUNT ((int)(sizeof layouts / sizeof layouts[0]))
 #define KEYS_PER_LAYOUT 3
@@ -68,7 +79,7 @@ int corpus_rule_parse(const cJSON *obj, const char *parent, const char *key, int
 {
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(obj, key);
     char path[160];
-    long long raw;
+    long long raw = 0;
 
     cj_path(path, sizeof path, parent, key);
     if (item == NULL) {
@@ -97,7 +108,7 @@ int corpus_rule_parse(const cJSON *obj, const char *parent, const char *key, int
 static int capped_parse(const cJSON *shape, int32_t *capped, cj_error *err)
 {
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(shape, "capped");
-    long long raw;
+    long long raw = 0;
     if (item == NULL) {
         *capped = ISECT_CAPPED;
         return 1;
@@ -112,6 +123,14 @@ static int capped_parse(const cJSON *shape, int32_t *capped, cj_error *err)
     return 1;
 }
 
+/* Zero doubles after the data. A raw integer type may be the number of a
+ * type other than the one whose keys it carries (type 10, a quadric, with
+ * a sphere's 4 numbers); the library then reads that type's count, and the
+ * padding keeps the read inside this buffer. The widest fixed layout has 10
+ * numbers, and a row list of n rows is read as at most n*4. */
+#define DATA_PADDING 16
+#define WIDEST_ROW 4
+
 /* Read the layout's keys into out->data (and n for a row list). */
 static int data_parse(const cJSON *shape, const shape_layout *layout, corpus_shape *out,
                       cj_error *err)
@@ -119,17 +138,24 @@ static int data_parse(const cJSON *shape, const shape_layout *layout, corpus_sha
     int k, total = 0, offset = 0;
 
     if (layout->keys[0].width < 0) {
-        int rows = 0;
-        if (!cj_rows(shape, "shape", layout->keys[0].key, -layout->keys[0].width, &out->data,
-                     &rows, err))
+        int rows = 0, width = -layout->keys[0].width;
+        double *values;
+        if (!cj_rows(shape, "shape", layout->keys[0].key, width, &values, &rows, err))
             return 0;
+        out->data = calloc((size_t)rows * WIDEST_ROW + DATA_PADDING, sizeof *out->data);
+        if (out->data == NULL) {
+            free(values);
+            return cj_fail(err, "out of memory");
+        }
+        memcpy(out->data, values, (size_t)rows * (size_t)width * sizeof *values);
+        free(values);
         out->desc.n = rows;
         out->desc.data = out->data;
         return 1;
     }
     for (k = 0; k < KEYS_PER_LAYOUT && layout->keys[k].key != NULL; k++)
         total += layout->keys[k].width;
-    out->data = malloc((size_t)total * sizeof *out->data);
+    out->data = calloc((size_t)total + DATA_PADDING, sizeof *out->data);
     if (out->data == NULL)
         return cj_fail(err, "out of memory");
     for (k = 0; k < KEYS_PER_LAYOUT && layout->keys[k].key != NULL; k++) {
@@ -165,7 +191,7 @@ int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err)
         out->named = 1;
         out->desc.type = layout->type;
     } else {
-        long long raw;
+        long long raw = 0;
         if (!cj_integer_value(type, "shape.type", INT32_MIN, INT32_MAX, &raw, err))
             return cj_fail(err, "field \"shape.type\" must be a type name or an integer");
         out->desc.type = (int32_t)raw;
@@ -219,4 +245,13 @@ int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_
         /* Only named types reach here, and every name has a case above. */
         return ISECT_E_ARG;
     }
+}
+
+const char *corpus_shape_scalar_name(int32_t type)
+{
+    int i;
+    for (i = 0; i < LAYOUT_COUNT; i++)
+        if (layouts[i].type == type)
+            return layouts[i].function;
+    return "(no scalar function)";
 }

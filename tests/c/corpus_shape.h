@@ -18,7 +18,9 @@ typedef struct corpus_shape {
  * tests/cases/README.md. An integer type is passed through raw (bad-input
  * cases) and takes the key layout of the first named type whose keys are all
  * present, so {"type": 99, "center": .., "radius": ..} carries sphere data;
- * with no matching keys data is NULL. Returns 1, or 0 with *err set. */
+ * with no matching keys data is NULL. The data buffer is zero-padded so a
+ * raw type that reads more numbers than its keys gave stays in bounds.
+ * Returns 1, or 0 with *err set. */
 int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err);
 
 void corpus_shape_free(corpus_shape *s);
@@ -27,6 +29,9 @@ void corpus_shape_free(corpus_shape *s);
  * the argument order the header gives; s->xform is ignored. */
 int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
                         isect_hit *hits, int cap);
+
+/* "isect_ray_sphere" etc. for a type, for messages. */
+const char *corpus_shape_scalar_name(int32_t type);
 
 /* A fill rule at obj[key]: "evenodd", "nonzero", or an integer passed
  * through unchecked (bad-input cases); ISECT_EVEN_ODD when absent. */

@@ -1,0 +1,100 @@
+"""isect — ray–object intersection in double precision (libisect for Python).
+
+A thin, numpy-first layer over libisect's C API, compiled into this package
+with cffi: every number it returns is computed by the C library.
+
+Shapes (each immutable, each with ``.transformed(matrix4x4)``):
+    Thin surfaces: :class:`Plane`, :class:`Triangle`, :class:`Polygon`.
+    Solids (with ``.contains``): :class:`Sphere`, :class:`Box`,
+    :class:`ConvexPolyhedron`, :class:`Cylinder`, :class:`InfiniteCylinder`,
+    :class:`Ellipsoid`, :class:`Quadric`.
+    Meshes (``Mesh``, ``ISECT_MESH``) arrive with libisect's mesh release; the
+    C header reserves the type and this package does not provide it yet.
+
+Queries: ``shape.intersect`` (closest hit per ray, batch, ``HIT_DTYPE``),
+``shape.intersect_rays`` (the same over a ``RAY_DTYPE`` array, zero-copy),
+``shape.intersect_all`` (every hit of one ray, a list of :class:`Hit`),
+``shape.intersect_all_batch`` (every hit of every ray, CSR offsets + hits),
+``solid.contains`` (points in a closed solid).
+
+Helpers: :func:`polygon_normal`, :func:`plane_from_points`,
+:func:`point_in_polygon`, :func:`winding_number`, :func:`version`,
+:func:`abi_version`.
+
+Errors: :class:`IsectError` and its subclasses :class:`InvalidArgumentError`,
+:class:`NonFiniteError`, :class:`DegenerateError` (all three also
+``ValueError``) and :class:`OutOfMemoryError` (also ``MemoryError``), chosen
+from the C status code.
+
+Example:
+    >>> import isect
+    >>> s = isect.Sphere([0, 0, 0], 1.0)
+    >>> [h.t for h in s.intersect_all([0, 0, -5], [0, 0, 1])]
+    [4.0, 6.0]
+"""
+
+from __future__ import annotations
+
+from ._errors import (
+    DegenerateError,
+    InvalidArgumentError,
+    IsectError,
+    NonFiniteError,
+    OutOfMemoryError,
+)
+from ._helpers import (
+    abi_version,
+    plane_from_points,
+    point_in_polygon,
+    polygon_normal,
+    version,
+    winding_number,
+)
+from ._shape import Shape, Solid
+from ._shapes import (
+    Box,
+    ConvexPolyhedron,
+    Cylinder,
+    Ellipsoid,
+    InfiniteCylinder,
+    Plane,
+    Polygon,
+    Quadric,
+    Sphere,
+    Triangle,
+)
+from ._types import EPS_DEFAULT, HIT_DTYPE, RAY_DTYPE, Hit, HitKind
+
+#: The version of the compiled libisect ("MAJOR.MINOR.PATCH").
+__version__: str = version()
+
+__all__ = [
+    "EPS_DEFAULT",
+    "HIT_DTYPE",
+    "RAY_DTYPE",
+    "Box",
+    "ConvexPolyhedron",
+    "Cylinder",
+    "DegenerateError",
+    "Ellipsoid",
+    "Hit",
+    "HitKind",
+    "InfiniteCylinder",
+    "InvalidArgumentError",
+    "IsectError",
+    "NonFiniteError",
+    "OutOfMemoryError",
+    "Plane",
+    "Polygon",
+    "Quadric",
+    "Shape",
+    "Solid",
+    "Sphere",
+    "Triangle",
+    "abi_version",
+    "plane_from_points",
+    "point_in_polygon",
+    "polygon_normal",
+    "version",
+    "winding_number",
+]

@@ -1,0 +1,161 @@
+"""Argument coercion: Python and numpy inputs to the contiguous float64 arrays
+and C structs that libisect reads. Only marshalling happens here, no geometry.
+"""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from ._errors import invalid
+from ._isect import ffi, lib
+from ._types import RAY_DTYPE
+
+ArrayLike = npt.ArrayLike
+#: One 3-vector: a sequence of 3 numbers or a (3,) array.
+Vector3 = Sequence[float] | npt.NDArray[Any]
+#: A polygon fill rule: "evenodd", "nonzero", or the C value (passed through).
+Rule = str | int
+
+_RULES = {"evenodd": lib.ISECT_EVEN_ODD, "nonzero": lib.ISECT_NONZERO}
+_OPTS_SIZE = ffi.sizeof("isect_opts")
+
+
+def as_float_array(x: ArrayLike, name: str) -> npt.NDArray[np.float64]:
+    """``x`` as a float64 array (no copy if it already is one)."""
+    try:
+        return np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise invalid(f"{name}: not an array of numbers ({exc})") from None
+
+
+def as_vector(x: ArrayLike, k: int, name: str) -> npt.NDArray[np.float64]:
+    """A fresh contiguous float64 array of shape (k,)."""
+    a = as_float_array(x, name)
+    if a.shape != (k,):
+        raise invalid(f"{name}: expected {k} numbers, got an array of shape {a.shape}")
+    return np.array(a, dtype=np.float64, order="C", copy=True)
+
+
+def as_rows(x: ArrayLike, k: int, name: str) -> npt.NDArray[np.float64]:
+    """A fresh contiguous float64 array of shape (n, k); n may be anything >= 0."""
+    a = as_float_array(x, name)
+    if a.ndim != 2 or a.shape[1] != k:
+        if a.size == 0:
+            return np.zeros((0, k), dtype=np.float64)
+        raise invalid(f"{name}: expected an array of shape (n, {k}), got {a.shape}")
+    return np.array(a, dtype=np.float64, order="C", copy=True)
+
+
+def as_points(x: ArrayLike, k: int, name: str) -> npt.NDArray[np.float64]:
+    """A float64 array of shape (..., k): one or many k-vectors (no copy if possible)."""
+    a = as_float_array(x, name)
+    if a.ndim == 0 or a.shape[-1] != k:
+        raise invalid(f"{name}: expected an array of shape (..., {k}), got {a.shape}")
+    return a
+
+
+def as_scalar(x: Any, name: str) -> float:
+    """A Python float from a number or 0-d array."""
+    a = as_float_array(x, name)
+    if a.shape != ():
+        raise invalid(f"{name}: expected a number, got an array of shape {a.shape}")
+    return float(a)
+
+
+def as_int(x: Any, name: str) -> int:
+    """A Python int from an integer (bool excluded)."""
+    if isinstance(x, bool):
+        raise invalid(f"{name}: expected an integer, got a bool")
+    try:
+        return operator.index(x)
+    except TypeError:
+        raise invalid(f"{name}: expected an integer, got {type(x).__name__}") from None
+
+
+def as_matrix4(m: ArrayLike) -> npt.NDArray[np.float64]:
+    """A fresh row-major (4, 4) float64 matrix from a 4x4 array or 16 numbers."""
+    a = as_float_array(m, "matrix")
+    if a.shape not in ((4, 4), (16,)):
+        raise invalid(f"matrix: expected a 4x4 matrix or 16 numbers, got shape {a.shape}")
+    return np.array(a.reshape(4, 4), dtype=np.float64, order="C", copy=True)
+
+
+def as_rule(rule: Rule) -> int:
+    """The C fill rule for "evenodd" / "nonzero"; integers pass through to C."""
+    if isinstance(rule, str):
+        try:
+            return int(_RULES[rule])
+        except KeyError:
+            raise invalid(f"rule: expected 'evenodd' or 'nonzero', got {rule!r}") from None
+    return as_int(rule, "rule")
+
+
+def as_threads(threads: Any) -> int:
+    """Number of threads for a batch: None means 1."""
+    if threads is None:
+        return 1
+    n = as_int(threads, "threads")
+    if n < 1:
+        raise invalid(f"threads: expected None or an integer >= 1, got {n}")
+    return n
+
+
+def raise_on_bad(errors: str) -> bool:
+    """True for errors="raise", False for errors="mark"."""
+    if errors == "raise":
+        return True
+    if errors == "mark":
+        return False
+    raise invalid(f"errors: expected 'raise' or 'mark', got {errors!r}")
+
+
+def make_opts(eps: Any, cull_back: bool, any_hit: bool) -> Any:
+    """An ``isect_opts *`` for the options, or NULL when all are defaults."""
+    flags = (lib.ISECT_CULL_BACK if cull_back else 0) | (lib.ISECT_ANY_HIT if any_hit else 0)
+    if eps is None and not flags:
+        return ffi.NULL
+    value = float(lib.ISECT_EPS_DEFAULT) if eps is None else as_scalar(eps, "eps")
+    return ffi.new("isect_opts *", (_OPTS_SIZE, flags, value))
+
+
+def make_rays(
+    origins: ArrayLike, directions: ArrayLike, tmin: ArrayLike, tmax: ArrayLike
+) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Broadcast origins (..., 3), directions (..., 3), tmin and tmax (...) into
+    one contiguous ``RAY_DTYPE`` array.
+
+    Returns the flat (n,) ray array and the broadcast batch shape.
+    """
+    org = as_points(origins, 3, "origins")
+    dirs = as_points(directions, 3, "directions")
+    lo = as_float_array(tmin, "tmin")
+    hi = as_float_array(tmax, "tmax")
+    try:
+        shape = np.broadcast_shapes(org.shape[:-1], dirs.shape[:-1], lo.shape, hi.shape)
+    except ValueError:
+        raise invalid(
+            f"cannot broadcast origins {org.shape}, directions {dirs.shape}, "
+            f"tmin {lo.shape} and tmax {hi.shape} together"
+        ) from None
+    rays = np.empty(shape, dtype=RAY_DTYPE)
+    rays["org"] = org
+    rays["dir"] = dirs
+    rays["tmin"] = lo
+    rays["tmax"] = hi
+    return rays.reshape(-1), shape
+
+
+def as_ray_array(rays: ArrayLike) -> tuple[np.ndarray, tuple[int, ...]]:
+    """A contiguous flat ``RAY_DTYPE`` view (or copy) of ``rays`` and its shape."""
+    a = np.asarray(rays)
+    if a.dtype != RAY_DTYPE:
+        if a.dtype.names is None or set(a.dtype.names) != set(RAY_DTYPE.names or ()):
+            raise invalid(f"rays: expected an array of RAY_DTYPE, got dtype {a.dtype}")
+        a = a.astype(RAY_DTYPE)
+    a = np.ascontiguousarray(a)
+    return a.reshape(-1), a.shape

@@ -1,0 +1,512 @@
+"""The shape base classes: the ``isect_shape`` descriptor and every query.
+
+A shape keeps its numbers in one read-only, contiguous float64 array; the C
+descriptor (``isect_shape``) points into that array and, when the shape is
+transformed, at an ``isect_xform`` the shape also owns. Both live as long as the
+Python object, and neither ever changes after construction, so one shape may be
+queried from many threads at once.
+
+Every number a query returns is computed by libisect; this module only moves
+bytes between numpy arrays and C buffers.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import struct
+import threading
+from typing import Any, ClassVar, TypeVar
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _batch
+from ._args import (
+    ArrayLike,
+    Vector3,
+    as_matrix4,
+    as_points,
+    as_ray_array,
+    as_threads,
+    make_opts,
+    make_rays,
+    raise_on_bad,
+)
+from ._errors import IsectError, check, error_for, invalid
+from ._isect import ffi, lib
+from ._types import HIT_DTYPE, KIND_BY_VALUE, RAY_DTYPE, Hit
+
+_KINDS = KIND_BY_VALUE
+
+S = TypeVar("S", bound="Shape")
+
+_INVALID = int(lib.ISECT_INVALID)
+# struct layouts of one isect_hit / isect_ray, for single-ray queries; they hold
+# only if the C structs are packed in field order (checked below).
+_HIT_STRUCT = struct.Struct("=9d2i")  # t, point[3], normal[3], uv[2], prim, kind
+_RAY_STRUCT = struct.Struct("=8d")  # org[3], dir[3], tmin, tmax
+_HIT_SIZE = _HIT_STRUCT.size
+if (
+    _HIT_SIZE != HIT_DTYPE.itemsize
+    or _RAY_STRUCT.size != RAY_DTYPE.itemsize
+    or [HIT_DTYPE.fields[k][1] for k in HIT_DTYPE.names] != [0, 8, 32, 56, 72, 76]  # type: ignore[index, union-attr]
+    or [RAY_DTYPE.fields[k][1] for k in RAY_DTYPE.names] != [0, 24, 48, 56]  # type: ignore[index, union-attr]
+):  # pragma: no cover
+    raise ImportError("isect: isect_hit / isect_ray are not laid out as isect.h documents")
+
+#: A valid ray used to let the C library validate a new shape's numbers.
+_PROBE_RAY = ffi.new("isect_ray *", ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0, math.inf))
+
+
+class _Scratch(threading.local):
+    """Per-thread C buffers for single-ray queries, so that intersect_all
+    allocates nothing but its result. ``bufs`` is one tuple to keep the hot
+    path to a single thread-local lookup: (ray cdata, ray bytes, hits cdata,
+    hits bytes, capacity)."""
+
+    bufs: tuple[Any, Any, Any, Any, int]
+
+    def __init__(self) -> None:
+        """Allocate this thread's buffers."""
+        self.resize(8)
+
+    def resize(self, cap: int) -> None:
+        """Make room for ``cap`` hits (C-allocated, so properly aligned)."""
+        ray = ffi.new("isect_ray *")
+        hits = ffi.new("isect_hit[]", cap)
+        self.bufs = (ray, ffi.buffer(ray), hits, ffi.buffer(hits), cap)
+
+
+_scratch = _Scratch()
+_NULL = ffi.NULL
+_c_intersect = lib.isect_intersect
+_pack_ray = _RAY_STRUCT.pack_into
+_unpack_hit = _HIT_STRUCT.unpack_from
+_tuple_new = tuple.__new__
+
+
+class Shape:
+    """Base class of every shape: the queries shared by all primitives.
+
+    Shapes are immutable. Construct one of the subclasses (:class:`Sphere`,
+    :class:`Box`, ...); invalid numbers (NaN, a negative radius, ...) raise at
+    construction, with the error libisect reports for them. Degenerate
+    geometry (zero radius, zero-area triangle, ...) is valid and never hit.
+    """
+
+    __slots__ = ("_data", "_data_ptr", "_n", "_flags", "_matrix", "_xform", "_c", "__weakref__")
+
+    #: The C shape type (``ISECT_SPHERE``, ...).
+    _type: ClassVar[int] = 0
+
+    _data: npt.NDArray[np.float64]
+    _data_ptr: Any
+    _n: int
+    _flags: int
+    _matrix: npt.NDArray[np.float64] | None
+    _xform: Any
+    _c: Any
+
+    # ------------------------------------------------------------ building
+
+    def _setup(self, data: npt.NDArray[np.float64], n: int = 0, flags: int = 0) -> None:
+        """Adopt ``data`` (a fresh contiguous float64 array) and build the descriptor."""
+        data.flags.writeable = False
+        self._data = data
+        self._n = n
+        self._flags = flags
+        self._matrix = None
+        self._xform = ffi.NULL
+        self._describe()
+
+    def _describe(self) -> None:
+        """(Re)build the C descriptor and let libisect validate it."""
+        c = ffi.new("isect_shape *")
+        c.type = self._type
+        try:
+            c.n = self._n
+            c.flags = self._flags
+        except OverflowError:
+            raise invalid(f"{type(self).__name__}: count or flag out of the int32 range") from None
+        c.reserved = 0
+        self._data_ptr = ffi.from_buffer("double[]", self._data)
+        c.data = self._data_ptr
+        # The mesh field stays NULL: ISECT_MESH shapes arrive with the mesh issue
+        # (a Mesh class owning an isect_mesh handle; see __init__.py).
+        c.mesh = ffi.NULL
+        c.xform = ffi.NULL
+        # Counting the hits of a valid ray with the untransformed shape reports
+        # exactly the errors of the shape's own numbers, n and flags.
+        check(lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0), type(self).__name__)
+        c.xform = self._xform
+        self._c = c
+
+    # ----------------------------------------------------------- properties
+
+    @property
+    def data(self) -> npt.NDArray[np.float64]:
+        """The shape's numbers as the C library reads them (read-only), in the
+        order of its scalar function's arguments."""
+        return self._data
+
+    @property
+    def matrix(self) -> npt.NDArray[np.float64] | None:
+        """The row-major 4x4 object-to-world matrix, or None if untransformed."""
+        return self._matrix
+
+    def transformed(self: S, matrix: ArrayLike) -> S:
+        """The same shape placed by an affine object-to-world transform.
+
+        Args:
+            matrix: a row-major 4x4 matrix (or 16 numbers) whose last row is
+                0 0 0 1. If the shape is already transformed, the result is
+                placed by ``matrix @ self.matrix``.
+
+        Returns:
+            A new shape of the same class sharing this shape's data. Rays are
+            taken to object space by the inverse (t is preserved), hits are
+            returned in world space.
+
+        Raises:
+            InvalidArgumentError: wrong shape, or last row not 0 0 0 1.
+            NonFiniteError: NaN or infinity in the matrix.
+            DegenerateError: a singular linear part.
+        """
+        m = as_matrix4(matrix)
+        if self._matrix is not None:
+            m = m @ self._matrix
+        xform = ffi.new("isect_xform *")
+        check(
+            lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
+            f"{type(self).__name__}.transformed",
+        )
+        m.flags.writeable = False
+        new = copy.copy(self)
+        new._matrix = m
+        new._xform = xform
+        new._describe()
+        return new
+
+    # -------------------------------------------------------------- queries
+
+    def intersect(
+        self,
+        origins: ArrayLike,
+        directions: ArrayLike,
+        *,
+        tmin: ArrayLike = 0.0,
+        tmax: ArrayLike = math.inf,
+        eps: float | None = None,
+        cull_back: bool = False,
+        any_hit: bool = False,
+        threads: int | None = None,
+        errors: str = "raise",
+    ) -> Any:
+        """Closest hit of each ray (``isect_intersect_batch``).
+
+        Args:
+            origins: ray origins, shape (..., 3); a single (3,) origin is
+                broadcast against many directions.
+            directions: ray directions, shape (..., 3); need not be unit
+                length, never renormalised. A single (3,) direction is
+                broadcast against many origins.
+            tmin, tmax: the hit interval [tmin, tmax], scalars or arrays that
+                broadcast with the batch shape.
+            eps: tolerance of the epsilon policy (default ``EPS_DEFAULT``).
+            cull_back: drop EXIT hits of thin surfaces (``ISECT_CULL_BACK``).
+            any_hit: accept any hit (``ISECT_ANY_HIT``; occlusion queries).
+            threads: split the batch over this many threads (the GIL is
+                released during the C calls); the result is byte-identical
+                to ``threads=None``.
+            errors: ``"raise"`` raises for the first bad ray (NaN/Inf, zero
+                direction, NaN tmin/tmax), naming its flat index;
+                ``"mark"`` returns bad rays as kind INVALID with t = NaN.
+
+        Returns:
+            A ``HIT_DTYPE`` array of the broadcast batch shape, or a single
+            ``HIT_DTYPE`` record when origins and directions are both (3,).
+            Rays that hit nothing have kind MISS, t = +inf, prim = -1.
+        """
+        rays, shape = make_rays(origins, directions, tmin, tmax)
+        hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
+        return hits.reshape(shape)[()] if shape == () else hits.reshape(shape)
+
+    def intersect_rays(
+        self,
+        rays: ArrayLike,
+        *,
+        eps: float | None = None,
+        cull_back: bool = False,
+        any_hit: bool = False,
+        threads: int | None = None,
+        errors: str = "raise",
+    ) -> npt.NDArray[np.void]:
+        """Closest hit of each ray of a ``RAY_DTYPE`` array, without copying it.
+
+        The zero-copy form of :meth:`intersect`: a C-contiguous ``RAY_DTYPE``
+        array is handed to C as it is (others are converted once). Arguments
+        and result as for :meth:`intersect`; the result has ``rays.shape``.
+        """
+        flat, shape = as_ray_array(rays)
+        hits = self._closest(flat, eps, cull_back, any_hit, threads, errors, "intersect_rays")
+        return hits.reshape(shape)
+
+    def intersect_all(
+        self,
+        origin: Vector3,
+        direction: Vector3,
+        *,
+        tmin: float = 0.0,
+        tmax: float = math.inf,
+        eps: float | None = None,
+        cull_back: bool = False,
+        any_hit: bool = False,
+    ) -> list[Hit]:
+        """Every hit of one ray in [tmin, tmax], sorted by t (``isect_intersect``).
+
+        Args:
+            origin: the ray origin, 3 numbers.
+            direction: the ray direction, 3 numbers (not renormalised).
+            tmin, tmax: the hit interval.
+            eps, cull_back, any_hit: options, as for :meth:`intersect`.
+
+        Returns:
+            A list of :class:`Hit` (kinds ENTER, EXIT, TOUCH), empty for a miss.
+
+        Raises:
+            NonFiniteError: NaN/Inf in the ray, NaN tmin/tmax, bad eps.
+            DegenerateError: a zero direction.
+            InvalidArgumentError: not 3 numbers, negative eps.
+        """
+        ray, ray_bytes, hits, hit_bytes, cap = _scratch.bufs
+        try:
+            ox, oy, oz = origin
+            dx, dy, dz = direction
+            _pack_ray(ray_bytes, 0, ox, oy, oz, dx, dy, dz, tmin, tmax)
+        except (TypeError, ValueError, struct.error):
+            raise invalid(
+                f"{type(self).__name__}.intersect_all: origin and direction must be "
+                "3 numbers each, tmin and tmax numbers"
+            ) from None
+        if eps is None and not cull_back and not any_hit:
+            opts = _NULL
+        else:
+            opts = make_opts(eps, cull_back, any_hit)
+        n = _c_intersect(self._c, ray, opts, hits, cap)
+        if n > cap:  # more hits than the scratch holds (meshes): grow it, ask again
+            _scratch.resize(n)
+            ray2, ray_bytes2, hits, hit_bytes, cap = _scratch.bufs
+            ray_bytes2[:] = ray_bytes
+            n = _c_intersect(self._c, ray2, opts, hits, cap)
+        if n < 0:
+            raise error_for(n, f"{type(self).__name__}.intersect_all")
+        out = []
+        for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
+            v = _unpack_hit(hit_bytes, offset)
+            out.append(_tuple_new(Hit, (v[0], v[1:4], v[4:7], v[7:9], v[9], _KINDS[v[10]])))
+        return out
+
+    def intersect_all_batch(
+        self,
+        origins: ArrayLike,
+        directions: ArrayLike,
+        *,
+        tmin: ArrayLike = 0.0,
+        tmax: ArrayLike = math.inf,
+        eps: float | None = None,
+        cull_back: bool = False,
+        any_hit: bool = False,
+        threads: int | None = None,
+        errors: str = "raise",
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.void]]:
+        """Every hit of every ray, CSR style (``isect_intersect_all_batch``).
+
+        Arguments as for :meth:`intersect`; the batch is flattened to n rays.
+
+        Returns:
+            ``(offsets, hits)``: ``offsets`` int64 of length n + 1, and ray i's
+            hits, sorted by t, are ``hits[offsets[i]:offsets[i+1]]``
+            (``HIT_DTYPE``). With ``errors="mark"`` a bad ray has one INVALID
+            record.
+        """
+        rays, _ = make_rays(origins, directions, tmin, tmax)
+        name = f"{type(self).__name__}.intersect_all_batch"
+        raising = raise_on_bad(errors)
+        nthreads = as_threads(threads)
+        opts = make_opts(eps, cull_back, any_hit)
+        n = rays.shape[0]
+        rp = ffi.from_buffer("isect_ray[]", rays)
+
+        def work(lo: int, hi: int) -> tuple[int, npt.NDArray[np.int64], npt.NDArray[np.void]]:
+            """All hits of rays[lo:hi] into chunk-local offsets and hits."""
+            m = hi - lo
+            offsets = np.empty(m + 1, dtype=np.int64)
+            op = ffi.from_buffer("int64_t[]", offsets)
+            cap = max(16, 2 * m)
+            hits = np.empty(cap, dtype=HIT_DTYPE)
+            total = lib.isect_intersect_all_batch(
+                self._c, rp + lo, m, opts, op, ffi.from_buffer("isect_hit[]", hits), cap
+            )
+            if total > cap:
+                cap = total
+                hits = np.empty(cap, dtype=HIT_DTYPE)
+                total = lib.isect_intersect_all_batch(
+                    self._c, rp + lo, m, opts, op, ffi.from_buffer("isect_hit[]", hits), cap
+                )
+            return total, offsets, hits[: max(total, 0)]
+
+        parts = _batch.run(work, n, nthreads)
+        for total, _, _ in parts:
+            check(total, name)
+        if len(parts) == 1:
+            _, offsets, hits = parts[0]
+            if hits.base is not None and 2 * len(hits) < len(hits.base):
+                hits = hits.copy()  # do not keep a mostly unused buffer alive
+        else:
+            offsets = np.empty(n + 1, dtype=np.int64)
+            offsets[0] = 0
+            base, lo = 0, 0
+            for total, part_offsets, _ in parts:
+                m = len(part_offsets) - 1
+                offsets[lo + 1 : lo + m + 1] = part_offsets[1:] + base
+                base += total
+                lo += m
+            hits = np.concatenate([h for _, _, h in parts])
+        if raising:
+            bad = hits["kind"] == _INVALID
+            if bad.any():
+                ray = int(np.searchsorted(offsets, int(bad.argmax()), side="right")) - 1
+                self._raise_bad_ray(rp, ray, opts, name)
+        return offsets, hits
+
+    # ------------------------------------------------------------ internals
+
+    def _closest(
+        self,
+        rays: np.ndarray,
+        eps: float | None,
+        cull_back: bool,
+        any_hit: bool,
+        threads: int | None,
+        errors: str,
+        method: str,
+    ) -> npt.NDArray[np.void]:
+        """Run ``isect_intersect_batch`` over a flat contiguous ray array."""
+        name = f"{type(self).__name__}.{method}"
+        raising = raise_on_bad(errors)
+        nthreads = as_threads(threads)
+        opts = make_opts(eps, cull_back, any_hit)
+        n = rays.shape[0]
+        hits = np.empty(n, dtype=HIT_DTYPE)
+        rp = ffi.from_buffer("isect_ray[]", rays)
+        hp = ffi.from_buffer("isect_hit[]", hits)
+        c = self._c
+
+        def work(lo: int, hi: int) -> int:
+            """One chunk of the batch: the C call over [lo, hi)."""
+            return int(lib.isect_intersect_batch(c, rp + lo, hi - lo, opts, hp + lo))
+
+        for status in _batch.run(work, n, nthreads):
+            check(status, name)
+        if raising:
+            bad = hits["kind"] == _INVALID
+            if bad.any():
+                self._raise_bad_ray(rp, int(bad.argmax()), opts, name)
+        return hits
+
+    def _raise_bad_ray(self, rp: Any, index: int, opts: Any, name: str) -> None:
+        """Raise the error the scalar call reports for the batch's bad ray."""
+        status = lib.isect_intersect(self._c, rp + index, opts, ffi.NULL, 0)
+        raise_bad_element(status, name, index, "ray")
+
+    def _repr_fields(self) -> str:
+        """The constructor arguments, for repr()."""
+        return f"data={self._data.tolist()}"
+
+    def __repr__(self) -> str:
+        """The constructor call that rebuilds the shape, and its transform."""
+        text = f"{type(self).__name__}({self._repr_fields()})"
+        if self._matrix is not None:
+            text += f".transformed({self._matrix.tolist()})"
+        return text
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as (class, data, n, flags, matrix)."""
+        return (_rebuild, (type(self), self._data, self._n, self._flags, self._matrix))
+
+
+class Solid(Shape):
+    """A shape with an inside: :meth:`contains` applies."""
+
+    __slots__ = ()
+
+    def contains(self, points: ArrayLike, *, threads: int | None = None) -> Any:
+        """Whether each point lies in the closed solid (``isect_contains_batch``).
+
+        Args:
+            points: shape (..., 3).
+            threads: split the batch over this many threads.
+
+        Returns:
+            A bool array of shape (...), or a bool for a single (3,) point.
+
+        Raises:
+            NonFiniteError: a point with NaN/Inf (``index`` names the first).
+            InvalidArgumentError: points not of shape (..., 3); an open
+                (uncapped) cylinder, which is a thin surface.
+        """
+        name = f"{type(self).__name__}.contains"
+        pts = as_points(points, 3, "points")
+        shape = pts.shape[:-1]
+        flat = np.ascontiguousarray(pts.reshape(-1, 3))
+        n = flat.shape[0]
+        inside = np.empty(n, dtype=np.uint8)
+        pp = ffi.from_buffer("double[]", flat)
+        ip = ffi.from_buffer("uint8_t[]", inside)
+        c = self._c
+
+        def work(lo: int, hi: int) -> int:
+            """One chunk of the batch: the C call over [lo, hi)."""
+            return int(lib.isect_contains_batch(c, pp + 3 * lo, hi - lo, ip + lo))
+
+        for status in _batch.run(work, n, as_threads(threads)):
+            check(status, name)
+        bad = inside == _INVALID
+        if bad.any():
+            index = int(bad.argmax())
+            raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point")
+        result = inside.view(np.bool_).reshape(shape)
+        return bool(result) if shape == () else result
+
+
+def raise_bad_element(status: int, name: str, index: int, item: str) -> None:
+    """Raise for element ``index`` that a batch call marked INVALID, with the
+    error the matching scalar call reports for it (``status``)."""
+    if status >= 0:
+        raise IsectError(
+            f"{name}: {item} {index} was marked INVALID by the batch call, "
+            "but the scalar call accepts it",
+            index=index,
+        )
+    raise error_for(status, name, index=index, item=item)
+
+
+def _rebuild(
+    cls: type[Shape],
+    data: npt.NDArray[np.float64],
+    n: int,
+    flags: int,
+    matrix: npt.NDArray[np.float64] | None,
+) -> Shape:
+    """Unpickle a shape."""
+    shape = cls.__new__(cls)
+    shape._setup(np.array(data, dtype=np.float64, order="C", copy=True), n, flags)
+    return shape if matrix is None else shape.transformed(matrix)
+
+
+def readonly_view(a: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """A read-only view of (part of) a shape's data."""
+    v = a.view()
+    v.flags.writeable = False
+    return v

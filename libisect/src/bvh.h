@@ -1,0 +1,73 @@
+/*
+ * bvh.h — a 4-wide bounding-volume hierarchy over boxed items (the faces of
+ * a mesh): built as a binary tree by binned SAH (Wald, "On fast
+ * Construction of SAH-based Bounding Volume Hierarchies", IRT 2007), then
+ * collapsed to four children per node (each node takes the grandchildren of
+ * its largest inner children, as in Wald, Benthin & Boulos, "Getting rid of
+ * packets", IRT 2008), which halves the depth: ray traversal of a large mesh
+ * is bound by the latency of one cache miss per node visited, so fewer,
+ * wider nodes are what makes it fast.
+ *
+ * Layout. A node holds the boxes of its four children in structure-of-
+ * arrays form (bounds[plane][child]), so one visit tests all four with the
+ * same arithmetic on consecutive floats; a node is 128 bytes, two cache
+ * lines, aligned. Boxes are stored in float, rounded outward from the
+ * double geometry (lo down, hi up, out-of-range values widened to +-FLT_MAX
+ * or infinity): every box contains its items exactly, so a test against it
+ * in double arithmetic is conservative, at half the memory traffic of
+ * double boxes. Nodes are in depth-first order.
+ *
+ * Depth. A split that SAH cannot make (all centroids in one bin) or any
+ * split below binary depth BVH_MEDIAN_DEPTH halves the item range instead,
+ * so the binary depth is at most BVH_MEDIAN_DEPTH + 32; a traversal that
+ * pushes at most three children per level never needs more than
+ * BVH_STACK_SIZE entries.
+ */
+#ifndef ISECT_BVH_H
+#define ISECT_BVH_H
+
+#include <stdint.h>
+
+/* Largest number of items in one leaf (the counts are 8-bit). */
+#define BVH_MAX_LEAF 8
+#define BVH_MEDIAN_DEPTH 48
+#define BVH_STACK_SIZE 256
+#define BVH_WIDTH 4
+
+/* Item flags, OR'ed over each child's subtree into bvh_node.flags. */
+#define BVH_FLAG_LOOSE_T 0x1u /* an item whose reported t may lie outside its box
+                                 (a polygon face: t from its plane): the
+                                 traversal must not cull this child by t */
+
+typedef struct bvh_node {
+    float    bounds[6][BVH_WIDTH]; /* plane p of child c: bounds[p][c], planes lo x,
+                                      y, z, hi x, y, z (outward-rounded); an
+                                      empty child has lo = +inf, hi = -inf */
+    int32_t  child[BVH_WIDTH];     /* >= 0: index of an inner node; < 0: a leaf
+                                      holding items [~child, ~child + count) */
+    uint8_t  count[BVH_WIDTH];     /* items in a leaf child (0: empty); 0 for inner */
+    uint8_t  loose;                /* bit c: child c's subtree has an item with
+                                      BVH_FLAG_LOOSE_T */
+    uint8_t  reserved[11];         /* pads the node to 128 bytes */
+} bvh_node;
+
+typedef struct bvh {
+    bvh_node *nodes;      /* nodes[0] is the root; always at least one node;
+                             128-byte aligned inside storage */
+    int64_t   node_count;
+    void     *storage;    /* what was allocated */
+} bvh;
+
+/* The float box of a double box, rounded outward (lo[3], hi[3] -> box[6]). */
+void bvh_box_from_double(const double lo[3], const double hi[3], float box[6]);
+
+/* Build over n >= 0 items with boxes[n][6] (float, already outward) and
+ * flags[n] (may be NULL). On success order[0..n) is the leaf order: leaf
+ * items [i, i + count) are the input items order[i ..]. 0, or
+ * ISECT_E_NOMEM (nothing allocated). n must be below 2^31. */
+int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t *order,
+              bvh *out);
+
+void bvh_free(bvh *b);
+
+#endif /* ISECT_BVH_H */

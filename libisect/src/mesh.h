@@ -1,0 +1,94 @@
+/*
+ * mesh.h — the mesh object and what its files share: mesh.c (creation,
+ * validation, per-face data), mesh_query.c (ray queries and containment over
+ * the BVH), mesh_check.c (topology report), and the dispatcher entries the
+ * family table in shape.c calls.
+ *
+ * Faces. A face of 3 vertices is a triangle, tested by triangle_hit_framed;
+ * a face of more is a planar polygon, tested by polygon_hit_plane_framed
+ * under ISECT_EVEN_ODD with its plane precomputed once. These are the
+ * library's one implementation of the exact, perturbed ray/face decision
+ * (planar.h), so a mesh is watertight for exactly the reasons a set of
+ * separate triangles and polygons is. Faces of zero area (decided exactly)
+ * are kept in the mesh, counted by the report, and left out of the BVH:
+ * they are never hit.
+ */
+#ifndef ISECT_MESH_H
+#define ISECT_MESH_H
+
+#include "bvh.h"
+#include "isect_internal.h"
+
+/* One face in BVH leaf order, with what the hot loop needs inline. 80 bytes. */
+typedef struct mesh_prim {
+    double  v[9];   /* triangle: its vertices a, b, c (copies, bit-identical to
+                       the mesh's vertex array); polygon: unit normal, centroid */
+    int32_t face;   /* face index (the hit's prim) */
+    int32_t nverts; /* 3: triangle; > 3: polygon, vertices through the face's idx */
+} mesh_prim;
+
+struct isect_mesh {
+    int64_t    vertex_count;
+    int64_t    face_count;
+    double    *verts;            /* [vertex_count][3], the caller's copy */
+    int32_t   *idx;              /* face corners: 3 per triangle, or offsets[face_count] */
+    int64_t   *offsets;          /* NULL for a triangle mesh, else [face_count + 1] */
+    mesh_prim *prims;            /* the non-degenerate faces, in BVH leaf order */
+    int64_t    prim_count;
+    int64_t    degenerate_faces; /* faces of zero area (not in the BVH) */
+    bvh        tree;
+    double     coord_bound;      /* max |coordinate| over all vertices: scales the
+                                    traversal's error bounds */
+    int32_t    closed;           /* every edge used by exactly two faces */
+    int32_t    reserved;
+};
+
+/* Face f: its first corner in idx and its vertex count. */
+static inline int64_t mesh_face_start(const isect_mesh *m, int64_t f)
+{
+    return m->offsets != NULL ? m->offsets[f] : 3 * f;
+}
+static inline int mesh_face_size(const isect_mesh *m, int64_t f)
+{
+    return m->offsets != NULL ? (int)(m->offsets[f + 1] - m->offsets[f]) : 3;
+}
+static inline const double *mesh_vertex(const isect_mesh *m, int32_t i)
+{
+    return m->verts + 3 * (int64_t)i;
+}
+
+/* An undirected edge use, for the topology passes: key = lo * vertex_count
+ * + hi for the two vertex indices lo < hi, the face, and whether the face
+ * runs hi -> lo. */
+typedef struct mesh_edge_use {
+    uint64_t key;
+    uint32_t face;
+    uint32_t reversed;
+} mesh_edge_use;
+
+/* Every edge use of every face (self-loops a -> a skipped), sorted by key
+ * (face order within one key): *uses (caller frees) and *count. ISECT_OK
+ * or ISECT_E_NOMEM. */
+int mesh_edge_uses(const isect_mesh *m, mesh_edge_use **uses, int64_t *count);
+
+/* The dispatcher's entries (shape.c family table). The ray is valid and in
+ * object space; [tmin, tmax], ISECT_CULL_BACK (faces are thin surfaces) and
+ * ISECT_ANY_HIT are applied here; hits are sorted by (t, face index). */
+int     mesh_check(const isect_shape *s);
+int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                      const isect_params *prm, isect_hit *hits, int64_t cap);
+int     mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                       const isect_params *prm, isect_hit *out);
+int     mesh_contains(const isect_shape *s, const double p[3]);
+/* isect_intersect_batch for a mesh (a proposed optional family entry): the
+ * closest (any, under ISECT_ANY_HIT) hit of each world-space ray into
+ * closest[i], ISECT_INVALID / ISECT_MISS records as the batch loop writes
+ * them; returns the number of rays hit. Bit for bit mesh_hit_first's
+ * records, several traversals interleaved to overlap their cache misses. */
+int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
+                             const isect_ray *rays, int64_t n, const isect_params *prm,
+                             isect_hit *closest);
+/* 1 when the mesh is closed (contains applies). */
+int     mesh_is_closed(const isect_mesh *m);
+
+#endif /* ISECT_MESH_H */

@@ -1,0 +1,262 @@
+/*
+ * mesh_check.c — isect_mesh_check: topology and measures of a mesh.
+ *
+ * Edges are the undirected vertex pairs of face boundaries (an edge a -> a
+ * of a face that repeats a vertex is no edge). From the sorted edge uses:
+ * an edge with one use is a boundary edge, with three or more non-manifold,
+ * with two uses in the same direction misoriented. Faces sharing an edge
+ * are in one component (union-find). Genus per closed oriented component
+ * is (2 - chi_c)/2 with chi_c = V_c - E_c + F_c, V_c counting the vertices
+ * of the component's faces (a vertex shared by two components counts in
+ * each). Volume by the divergence theorem, area as the sum of the faces'
+ * vector-area lengths; both over each face's fan from its first vertex,
+ * relative to the centre of the vertices' bounding box (so the sums do not
+ * cancel the mesh's position away) and summed with Neumaier's compensated
+ * summation.
+ */
+#include "mesh.h"
+
+#include "vec3.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------ compensated sum */
+
+typedef struct sum_acc {
+    double sum, comp;
+} sum_acc;
+
+/* Neumaier's variant of Kahan summation: the rounding error of every
+ * addition is collected exactly (TwoSum by magnitude) in comp. */
+static void sum_add(sum_acc *s, double x)
+{
+    double t = s->sum + x;
+    if (fabs(s->sum) >= fabs(x))
+        s->comp += (s->sum - t) + x;
+    else
+        s->comp += (x - t) + s->sum;
+    s->sum = t;
+}
+
+static double sum_value(const sum_acc *s)
+{
+    return s->sum + s->comp;
+}
+
+/* ---------------------------------------------------------- union-find */
+
+static int32_t uf_find(int32_t *parent, int32_t x)
+{
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]]; /* path halving */
+        x = parent[x];
+    }
+    return x;
+}
+
+static void uf_union(int32_t *parent, int32_t a, int32_t b)
+{
+    a = uf_find(parent, a);
+    b = uf_find(parent, b);
+    if (a != b) {
+        /* The larger index under the smaller: deterministic roots. */
+        if (a < b)
+            parent[b] = a;
+        else
+            parent[a] = b;
+    }
+}
+
+/* ------------------------------------------------------------ measures */
+
+static void mesh_measures(const isect_mesh *m, isect_mesh_report *r)
+{
+    double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 0.0, 0.0, 0.0 };
+    for (int64_t i = 0; i < m->vertex_count; i++) {
+        const double *p = m->verts + 3 * i;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = i == 0 || p[k] < lo[k] ? p[k] : lo[k];
+            hi[k] = i == 0 || p[k] > hi[k] ? p[k] : hi[k];
+        }
+    }
+    double ref[3];
+    for (int k = 0; k < 3; k++)
+        ref[k] = 0.5 * lo[k] + 0.5 * hi[k];
+    sum_acc volume = { 0.0, 0.0 }, area = { 0.0, 0.0 };
+    for (int64_t f = 0; f < m->face_count; f++) {
+        const int32_t *corner = m->idx + mesh_face_start(m, f);
+        int size = mesh_face_size(m, f);
+        double a[3], vector_area[3] = { 0.0, 0.0, 0.0 };
+        v3_sub(a, mesh_vertex(m, corner[0]), ref);
+        for (int i = 1; i + 1 < size; i++) {
+            double b[3], c[3], ab[3], ac[3], cross[3], bc[3];
+            v3_sub(b, mesh_vertex(m, corner[i]), ref);
+            v3_sub(c, mesh_vertex(m, corner[i + 1]), ref);
+            /* Tetrahedron (ref, a, b, c): a . (b x c) / 6. */
+            v3_cross(bc, b, c);
+            sum_add(&volume, v3_dot(a, bc) / 6.0);
+            v3_sub(ab, b, a);
+            v3_sub(ac, c, a);
+            v3_cross(cross, ab, ac);
+            v3_add(vector_area, vector_area, cross);
+        }
+        sum_add(&area, 0.5 * v3_norm(vector_area));
+    }
+    r->volume = sum_value(&volume);
+    r->area = sum_value(&area);
+}
+
+/* ------------------------------------------------------------- topology */
+
+/* Vertices a component's faces use, counted once per (component, vertex):
+ * almost every vertex has one component, remembered in first_comp; the
+ * rare extra pairs are collected, sorted and counted once each. */
+static int count_component_vertices(const isect_mesh *m, const int32_t *comp_of_face,
+                                    int64_t *vertices_of_comp, int64_t *referenced)
+{
+    int32_t *first_comp = malloc((size_t)(m->vertex_count > 0 ? m->vertex_count : 1)
+                                 * sizeof *first_comp);
+    if (first_comp == NULL)
+        return ISECT_E_NOMEM;
+    for (int64_t v = 0; v < m->vertex_count; v++)
+        first_comp[v] = -1;
+    mesh_edge_use *extra = NULL; /* key = comp * vertex_count + vertex */
+    int64_t extra_count = 0, extra_cap = 0;
+    *referenced = 0;
+    for (int64_t f = 0; f < m->face_count; f++) {
+        const int32_t *corner = m->idx + mesh_face_start(m, f);
+        int size = mesh_face_size(m, f);
+        int32_t c = comp_of_face[f];
+        for (int i = 0; i < size; i++) {
+            int32_t v = corner[i];
+            if (first_comp[v] < 0) {
+                first_comp[v] = c;
+                vertices_of_comp[c]++;
+                (*referenced)++;
+            } else if (first_comp[v] != c) {
+                if (extra_count == extra_cap) {
+                    int64_t cap = extra_cap > 0 ? 2 * extra_cap : 64;
+                    mesh_edge_use *grown = realloc(extra, (size_t)cap * sizeof *grown);
+                    if (grown == NULL) {
+                        free(extra);
+                        free(first_comp);
+                        return ISECT_E_NOMEM;
+                    }
+                    extra = grown;
+                    extra_cap = cap;
+                }
+                extra[extra_count].key = (uint64_t)c * (uint64_t)m->vertex_count + (uint64_t)v;
+                extra[extra_count].face = (uint32_t)c;
+                extra[extra_count].reversed = 0;
+                extra_count++;
+            }
+        }
+    }
+    /* Sort the extras (few) by key and count each distinct pair once. */
+    for (int64_t i = 1; i < extra_count; i++) {
+        mesh_edge_use x = extra[i];
+        int64_t j = i;
+        for (; j > 0 && extra[j - 1].key > x.key; j--)
+            extra[j] = extra[j - 1];
+        extra[j] = x;
+    }
+    for (int64_t i = 0; i < extra_count; i++)
+        if (i == 0 || extra[i].key != extra[i - 1].key)
+            vertices_of_comp[extra[i].face]++;
+    free(extra);
+    free(first_comp);
+    return ISECT_OK;
+}
+
+static int mesh_topology(const isect_mesh *m, isect_mesh_report *r)
+{
+    int64_t nf = m->face_count;
+    mesh_edge_use *uses;
+    int64_t use_count;
+    int status = mesh_edge_uses(m, &uses, &use_count);
+    if (status != ISECT_OK)
+        return status;
+    size_t faces_alloc = (size_t)(nf > 0 ? nf : 1);
+    int32_t *parent = malloc(faces_alloc * sizeof *parent);
+    int32_t *comp_of_face = malloc(faces_alloc * sizeof *comp_of_face);
+    int64_t *stats = calloc(3 * faces_alloc, sizeof *stats); /* V_c, E_c, F_c */
+    if (parent == NULL || comp_of_face == NULL || stats == NULL) {
+        free(uses);
+        free(parent);
+        free(comp_of_face);
+        free(stats);
+        return ISECT_E_NOMEM;
+    }
+    for (int64_t f = 0; f < nf; f++)
+        parent[f] = (int32_t)f;
+
+    for (int64_t i = 0; i < use_count;) {
+        int64_t j = i + 1;
+        while (j < use_count && uses[j].key == uses[i].key) {
+            uf_union(parent, (int32_t)uses[i].face, (int32_t)uses[j].face);
+            j++;
+        }
+        int64_t n = j - i;
+        r->edges++;
+        if (n == 1)
+            r->boundary_edges++;
+        else if (n >= 3)
+            r->nonmanifold_edges++;
+        else if (uses[i].reversed == uses[i + 1].reversed)
+            r->misoriented_edges++;
+        i = j;
+    }
+
+    int64_t *vertices_of_comp = stats, *edges_of_comp = stats + faces_alloc,
+            *faces_of_comp = stats + 2 * faces_alloc;
+    for (int64_t f = 0; f < nf; f++) {
+        int32_t root = uf_find(parent, (int32_t)f);
+        if (root == f)
+            comp_of_face[f] = (int32_t)r->components++;
+        else
+            comp_of_face[f] = comp_of_face[root]; /* root < f: already numbered */
+        faces_of_comp[comp_of_face[f]]++;
+    }
+    for (int64_t i = 0; i < use_count; i++)
+        if (i == 0 || uses[i].key != uses[i - 1].key)
+            edges_of_comp[comp_of_face[uses[i].face]]++;
+    free(uses);
+    free(parent);
+
+    status = count_component_vertices(m, comp_of_face, vertices_of_comp, &r->vertices);
+    free(comp_of_face);
+    if (status != ISECT_OK) {
+        free(stats);
+        return status;
+    }
+    r->faces = nf;
+    r->degenerate_faces = m->degenerate_faces;
+    r->euler_characteristic = r->vertices - r->edges + r->faces;
+    r->closed = r->boundary_edges == 0 && r->nonmanifold_edges == 0;
+    r->oriented = r->misoriented_edges == 0;
+    r->genus = -1;
+    if (r->closed && r->oriented) {
+        r->genus = 0;
+        for (int64_t c = 0; c < r->components; c++) {
+            int64_t chi = vertices_of_comp[c] - edges_of_comp[c] + faces_of_comp[c];
+            r->genus += (2 - chi) / 2;
+        }
+    }
+    free(stats);
+    return ISECT_OK;
+}
+
+ISECT_API int isect_mesh_check(const isect_mesh *mesh, isect_mesh_report *report)
+{
+    if (mesh == NULL || report == NULL)
+        return ISECT_E_ARG;
+    isect_mesh_report r;
+    memset(&r, 0, sizeof r);
+    int status = mesh_topology(mesh, &r);
+    if (status != ISECT_OK)
+        return status;
+    mesh_measures(mesh, &r);
+    *report = r;
+    return ISECT_OK;
+}

@@ -1,0 +1,771 @@
+/*
+ * mesh_query.c — ray queries against a mesh through its BVH: closest hit,
+ * all hits, any hit; and point containment by exact crossing parity.
+ *
+ * Every face decision is made by the shared exact tests of planar.h
+ * (triangle_hit_framed, polygon_hit_plane_framed) in the ray's sheared
+ * frame, computed once per ray. Everything in front of them only skips
+ * faces those tests would certainly reject, so the BVH changes the speed
+ * and never the answer: a query returns bit for bit what testing every
+ * face in turn would (the tests check this against brute force).
+ *
+ * Why no hit is lost between boxes (numerics)
+ * -------------------------------------------
+ * Let D = max|o_k| + max|vertex coordinate| (infinity norm), u = 2^-53.
+ * Every vertex-minus-origin difference is at most D. The exact test claims
+ * a triangle when the frame origin lies in the triangle of its ROUNDED
+ * projected vertices; each rounded projection is within 4uD of the exact
+ * one, so the line passes within 4uD of the face, laterally. The reported
+ * t is the mix of the vertices' sheared z by barycentric weights that are
+ * nonnegative (the test clamps them to one sign), accurate to a few ulps
+ * and normalised to sum 1, so org + t dir lies within about 27uD of a
+ * point of the face in every coordinate once the slab test's own roundings
+ * (subtraction 2uD, product and reciprocal 4uD as positions) are added.
+ * The slab test therefore runs on boxes grown by pad = 64uD; the growth is
+ * folded into two shifted copies of the origin (org_near, org_far), so it
+ * costs nothing per box (the padding idea of Ize, "Robust BVH Ray
+ * Traversal", JCGT 2013, made absolute instead of relative because the
+ * errors here scale with D, not with t). A NaN from 0 * inf (a zero
+ * direction component on a slab plane) loses every comparison, so that
+ * slab simply does not constrain the interval — conservative.
+ *
+ * Polygon faces take t from their plane, t = n.(c - o) / n.d, which for a
+ * grazing ray may land far outside the face's box; subtrees holding a
+ * polygon (BVH_FLAG_LOOSE_T) are therefore culled only laterally (the line
+ * against the padded box), never by [tmin, tmax] or the current closest t.
+ *
+ * The triangle pre-filter
+ * -----------------------
+ * Before the exact test each triangle gets Woop's three edge functions in
+ * plain double from projections computed without fma (so that x86-64
+ * without -mfma never calls libm's fma in the loop). Against the exact
+ * test's inputs each projection differs by at most 5uD and has size <= 2D,
+ * so an edge function is off by at most ~70uD^2 (products of the shifted
+ * inputs plus three roundings); with bound B = 128uD^2 (and a floor of
+ * 2^-1000, below which products may be subnormal), two edge functions
+ * beyond +B and -B prove the exact test rejects. The exact test's t is a
+ * convex mix of the same z values it computes (identical arithmetic here),
+ * within about 10u max|z| of [min z, max z] (three weighted terms, weights
+ * summing to 1 within 4u); a triangle whose whole z range is outside
+ * [tmin, current t] by 16u max|z| is skipped.
+ *
+ * Containment
+ * -----------
+ * Parity of crossings along the fixed ray from p in +x, with every decision
+ * exact on the unrounded input: the 2D claims use orient2_sign_perturbed /
+ * the winding rule at p's (y, z) (the same symbolic perturbation as the ray
+ * tests, and the same predicates), and the side of p on which a claimed
+ * face is crossed is the exact sign of orient3 (Shewchuk). Polygon faces
+ * count as their fan from the first vertex: the fan's inner edges cancel in
+ * pairs, so its crossing parity is the polygon's even-odd parity. Points on
+ * the surface are inside (solids are closed sets, as for the analytic
+ * shapes): see mesh_contains.
+ */
+#include "mesh.h"
+
+#include "planar.h"
+#include "predicates.h"
+#include "ray_frame.h"
+
+#include <float.h>
+#include <string.h>
+
+#define UNIT_ROUNDOFF (DBL_EPSILON / 2.0)
+
+/* Padding of the boxes in units of u*D, and the edge-function and t bounds
+ * of the pre-filter in units of u*D^2 and u*max|z| (see above). */
+#define BOX_PAD_ULPS 64.0
+#define EDGE_BOUND_ULPS 128.0
+#define EDGE_BOUND_FLOOR 0x1p-1000
+#define T_SLACK_ULPS 16.0
+
+enum query_mode { QUERY_CLOSEST, QUERY_ALL, QUERY_ANY };
+
+/* A node or leaf reference as the traversal stacks it. */
+typedef struct node_ref {
+    int32_t ref;   /* >= 0 inner node, < 0 leaf ~first */
+    int32_t count; /* leaf size; 0 for an inner node */
+    double  entry; /* where the ray enters its box; -inf: never culled by t */
+} node_ref;
+
+typedef struct query {
+    const isect_mesh   *mesh;
+    const isect_ray    *ray;
+    const isect_params *prm;
+    ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
+                              misses every box never pays for it */
+    int       frame_ready;
+    /* Slab test on padded boxes. */
+    double org_near[3], org_far[3], inv_dir[3];
+    int    near_plane[3], far_plane[3]; /* index into a node's 6 bounds */
+    /* Pre-filter. */
+    double edge_bound;
+    int    cull_back;
+    /* Results. */
+    double     t_limit;   /* closest: t of the best hit so far (else tmax) */
+    isect_hit  best;
+    int        found;
+    int64_t    count;     /* all: hits found */
+    isect_hit *hits;      /* all: max-heap of the best min(count, cap) */
+    int64_t    cap;
+} query;
+
+static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
+                       const isect_params *prm)
+{
+    q->mesh = m;
+    q->ray = ray;
+    q->prm = prm;
+    q->frame_ready = 0;
+    double org_max = 0.0;
+    for (int k = 0; k < 3; k++)
+        org_max = fabs(ray->org[k]) > org_max ? fabs(ray->org[k]) : org_max;
+    double d = (org_max + m->coord_bound) * (1.0 + 4.0 * UNIT_ROUNDOFF);
+    double pad = BOX_PAD_ULPS * UNIT_ROUNDOFF * d;
+    for (int k = 0; k < 3; k++) {
+        int negative = signbit(ray->dir[k]) != 0;
+        double toward = negative ? -pad : pad;
+        q->inv_dir[k] = 1.0 / ray->dir[k];
+        q->org_near[k] = ray->org[k] + toward;
+        q->org_far[k] = ray->org[k] - toward;
+        q->near_plane[k] = negative ? k + 3 : k;
+        q->far_plane[k] = negative ? k : k + 3;
+    }
+    /* d * d may overflow (infinite bound: every triangle goes to the exact
+     * test) or, near zero, underflow below the floor. */
+    q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * d * d;
+    if (!(q->edge_bound > EDGE_BOUND_FLOOR))
+        q->edge_bound = isnan(q->edge_bound) ? INFINITY : EDGE_BOUND_FLOOR;
+    q->cull_back = (prm->flags & ISECT_CULL_BACK) != 0;
+    q->t_limit = ray->tmax;
+    q->found = 0;
+    q->count = 0;
+    q->hits = NULL;
+    q->cap = 0;
+}
+
+/* 0 when the exact triangle test certainly rejects the triangle or its
+ * hit lies certainly outside [t_lo, t_hi]; 1 when it must be run. */
+static inline int triangle_candidate(const query *q, const double *v, double t_lo,
+                                     double t_hi)
+{
+    const ray_frame *f = &q->frame;
+    const int kx = f->kx, ky = f->ky, kz = f->kz;
+    double az = v[kz] - f->org[kz], bz = v[3 + kz] - f->org[kz], cz = v[6 + kz] - f->org[kz];
+    double ax = (v[kx] - f->org[kx]) - f->sx * az, ay = (v[ky] - f->org[ky]) - f->sy * az;
+    double bx = (v[3 + kx] - f->org[kx]) - f->sx * bz;
+    double by = (v[3 + ky] - f->org[ky]) - f->sy * bz;
+    double cx = (v[6 + kx] - f->org[kx]) - f->sx * cz;
+    double cy = (v[6 + ky] - f->org[ky]) - f->sy * cz;
+    double e_bc = bx * cy - by * cx;
+    double e_ca = cx * ay - cy * ax;
+    double e_ab = ax * by - ay * bx;
+    double bound = q->edge_bound;
+    int negative = (e_bc < -bound) | (e_ca < -bound) | (e_ab < -bound);
+    int positive = (e_bc > bound) | (e_ca > bound) | (e_ab > bound);
+    if (negative & positive)
+        return 0;
+    /* z exactly as the exact test computes it: (p - org)[kz] * sz. */
+    double za = az * f->sz, zb = bz * f->sz, zc = cz * f->sz;
+    /* Comparisons, not fmin/fmax: those are libm calls without -ffast-math. */
+    double z_min = za < zb ? za : zb, z_max = za < zb ? zb : za;
+    z_min = zc < z_min ? zc : z_min;
+    z_max = zc > z_max ? zc : z_max;
+    double z_abs = -z_min > z_max ? -z_min : z_max;
+    double slack = T_SLACK_ULPS * UNIT_ROUNDOFF * z_abs;
+    return !(z_min - slack > t_hi || z_max + slack < t_lo);
+}
+
+/* (a.t, a.prim) before (b.t, b.prim). */
+static inline int hit_before(const isect_hit *a, const isect_hit *b)
+{
+    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+}
+
+/* The max-heap of the best cap hits (by (t, prim)), at hits[0..n). */
+static void heap_sift_down(isect_hit *h, int64_t n, int64_t i)
+{
+    for (;;) {
+        int64_t l = 2 * i + 1, r = l + 1, top = i;
+        if (l < n && hit_before(&h[top], &h[l]))
+            top = l;
+        if (r < n && hit_before(&h[top], &h[r]))
+            top = r;
+        if (top == i)
+            return;
+        isect_hit tmp = h[i];
+        h[i] = h[top];
+        h[top] = tmp;
+        i = top;
+    }
+}
+
+static void heap_push(isect_hit *h, int64_t n, const isect_hit *x)
+{
+    int64_t i = n;
+    h[i] = *x;
+    while (i > 0) {
+        int64_t parent = (i - 1) / 2;
+        if (!hit_before(&h[parent], &h[i]))
+            return;
+        isect_hit tmp = h[i];
+        h[i] = h[parent];
+        h[parent] = tmp;
+        i = parent;
+    }
+}
+
+/* In place ascending order of a max-heap of n hits. */
+static void heap_sort(isect_hit *h, int64_t n)
+{
+    for (int64_t end = n - 1; end > 0; end--) {
+        isect_hit tmp = h[0];
+        h[0] = h[end];
+        h[end] = tmp;
+        heap_sift_down(h, end, 0);
+    }
+}
+
+/* Records a hit of the exact test that is in range and survives culling;
+ * 1 when the traversal can stop (any hit). */
+static int query_take(query *q, int mode, const isect_hit *h)
+{
+    switch (mode) {
+    case QUERY_CLOSEST:
+        if (!q->found || hit_before(h, &q->best)) {
+            q->best = *h;
+            q->found = 1;
+            q->t_limit = h->t;
+        }
+        return 0;
+    case QUERY_ALL: {
+        int64_t kept = q->count < q->cap ? q->count : q->cap;
+        if (q->count < q->cap) {
+            heap_push(q->hits, kept, h);
+        } else if (q->cap > 0 && hit_before(h, &q->hits[0])) {
+            q->hits[0] = *h;
+            heap_sift_down(q->hits, kept, 0);
+        }
+        q->count++;
+        return 0;
+    }
+    default:
+        q->best = *h;
+        q->found = 1;
+        return 1;
+    }
+}
+
+/* The faces of one leaf; 1 when the traversal can stop. */
+static int query_leaf(query *q, int mode, int32_t first, int32_t count)
+{
+    const isect_mesh *m = q->mesh;
+    const isect_ray *ray = q->ray;
+    if (!q->frame_ready) {
+        ray_frame_shear(ray, &q->frame);
+        q->frame_ready = 1;
+    }
+    for (int32_t i = 0; i < count; i++) {
+        const mesh_prim *p = &m->prims[first + i];
+        isect_hit h;
+        int hit;
+        if (p->nverts == 3) {
+            if (!triangle_candidate(q, p->v, ray->tmin, q->t_limit))
+                continue;
+            hit = triangle_hit_framed(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, &h);
+        } else {
+            hit = polygon_hit_plane_framed(&q->frame, ray, q->prm, m->verts,
+                                           m->idx + mesh_face_start(m, p->face), p->nverts,
+                                           ISECT_EVEN_ODD, p->v, p->v + 3, &h);
+        }
+        /* The dispatcher's filter (hits_finish): NaN t never passes. */
+        if (!hit || !(h.t >= ray->tmin && h.t <= ray->tmax))
+            continue;
+        if (q->cull_back && h.kind == ISECT_EXIT)
+            continue;
+        h.prim = p->face;
+        if (query_take(q, mode, &h))
+            return 1;
+    }
+    return 0;
+}
+
+/* A hint to start loading memory the traversal will soon read: the first
+ * three cache lines of a node (its two) or of a leaf (its first two or
+ * three prims). Traversal of a large mesh is bound by the latency of these
+ * loads; the hint overlaps them with other work. GCC and clang only;
+ * elsewhere nothing. */
+#if defined(__GNUC__) || defined(__clang__)
+#define PREFETCH(p)                                                                  \
+    (__builtin_prefetch(p), __builtin_prefetch((p) + 64), __builtin_prefetch((p) + 128))
+#else
+#define PREFETCH(p) ((void)(p))
+#endif
+
+/* The index of the lowest set bit of a 4-bit mask (C99 has no ctz). */
+static const int8_t lowest_bit[16] = { 0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0 };
+
+/* Where a traversal is: the reference it visits next and the stacked ones
+ * it will come back to. */
+typedef struct walker {
+    node_ref cur;
+    int      sp;
+    node_ref stack[BVH_STACK_SIZE];
+} walker;
+
+static void walker_init(walker *w)
+{
+    w->cur.ref = 0;
+    w->cur.count = 0;
+    w->cur.entry = -INFINITY;
+    w->sp = 0;
+}
+
+/* Tests the four children of node n: 1 and the nearest hit child in
+ * w->cur (the others stacked, farthest deepest), or 0 if none is hit. */
+static inline int visit_node(const query *q, walker *w, const bvh_node *n)
+{
+    const bvh_node *nodes = q->mesh->tree.nodes;
+    /* The four slab tests, on consecutive floats (near and far planes
+     * chosen per ray by the direction's signs), written as one loop per
+     * axis so that the compiler can run the children two at a time. A
+     * subtree with polygon faces is culled laterally only: its interval
+     * starts as the whole line. */
+    const float *near_x = n->bounds[q->near_plane[0]], *far_x = n->bounds[q->far_plane[0]];
+    const float *near_y = n->bounds[q->near_plane[1]], *far_y = n->bounds[q->far_plane[1]];
+    const float *near_z = n->bounds[q->near_plane[2]], *far_z = n->bounds[q->far_plane[2]];
+    double tn[BVH_WIDTH], tf[BVH_WIDTH];
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        tn[c] = q->ray->tmin;
+        tf[c] = q->t_limit;
+    }
+    if (n->loose != 0) {
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            if ((n->loose >> c) & 1u) {
+                tn[c] = -INFINITY;
+                tf[c] = INFINITY;
+            }
+        }
+    }
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        double t0 = ((double)near_x[c] - q->org_near[0]) * q->inv_dir[0];
+        double t1 = ((double)far_x[c] - q->org_far[0]) * q->inv_dir[0];
+        tn[c] = t0 > tn[c] ? t0 : tn[c];
+        tf[c] = t1 < tf[c] ? t1 : tf[c];
+    }
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        double t0 = ((double)near_y[c] - q->org_near[1]) * q->inv_dir[1];
+        double t1 = ((double)far_y[c] - q->org_far[1]) * q->inv_dir[1];
+        tn[c] = t0 > tn[c] ? t0 : tn[c];
+        tf[c] = t1 < tf[c] ? t1 : tf[c];
+    }
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        double t0 = ((double)near_z[c] - q->org_near[2]) * q->inv_dir[2];
+        double t1 = ((double)far_z[c] - q->org_far[2]) * q->inv_dir[2];
+        tn[c] = t0 > tn[c] ? t0 : tn[c];
+        tf[c] = t1 < tf[c] ? t1 : tf[c];
+    }
+    unsigned mask = 0;
+    for (int c = 0; c < BVH_WIDTH; c++)
+        mask |= (unsigned)(tn[c] <= tf[c]) << c;
+    if (mask == 0)
+        return 0;
+    /* Stacked loose subtrees are never dropped by t. */
+    if (n->loose != 0)
+        for (int c = 0; c < BVH_WIDTH; c++)
+            if ((n->loose >> c) & 1u)
+                tn[c] = -INFINITY;
+    /* Ask for every hit child's first cache lines now: the nearest is
+     * needed at once, the others when popped. */
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+        int32_t r = n->child[lowest_bit[m]];
+        /* A select, not a branch: which kind of child is unpredictable. */
+        const char *at = r >= 0 ? (const char *)&nodes[r] : (const char *)&q->mesh->prims[~r];
+        PREFETCH(at);
+    }
+    /* Most visits hit one or two children: those without a sort; three or
+     * four by insertion. */
+    int first = lowest_bit[mask];
+    unsigned rest = mask & (mask - 1);
+    node_ref a = { n->child[first], n->count[first], tn[first] };
+    if (rest == 0) {
+        w->cur = a;
+        return 1;
+    }
+    int second = lowest_bit[rest];
+    rest &= rest - 1;
+    node_ref b = { n->child[second], n->count[second], tn[second] };
+    if (rest == 0) {
+        int swap = b.entry < a.entry;
+        w->stack[w->sp++] = swap ? a : b;
+        w->cur = swap ? b : a;
+        return 1;
+    }
+    node_ref next[BVH_WIDTH];
+    next[0] = a;
+    int count = 1;
+    for (unsigned m = mask & (mask - 1); m != 0; m &= m - 1) {
+        int c = lowest_bit[m];
+        node_ref r = { n->child[c], n->count[c], tn[c] };
+        int j = count++;
+        for (; j > 0 && next[j - 1].entry > r.entry; j--)
+            next[j] = next[j - 1];
+        next[j] = r;
+    }
+    for (int j = count - 1; j > 0; j--)
+        w->stack[w->sp++] = next[j];
+    w->cur = next[0];
+    return 1;
+}
+
+/* One step of a depth-first traversal, nearest child first: visits w->cur
+ * (a node's children, or a leaf's faces) and moves w->cur on; a stacked
+ * subtree is dropped when the closest hit found since lies before its
+ * entry. 0 when the traversal is over. */
+static inline int query_step(query *q, walker *w, int mode)
+{
+    node_ref cur = w->cur;
+    if (cur.ref >= 0) {
+        if (visit_node(q, w, &q->mesh->tree.nodes[cur.ref]))
+            return 1;
+    } else if (cur.count > 0 && query_leaf(q, mode, ~cur.ref, cur.count)) {
+        return 0;
+    }
+    do {
+        if (w->sp == 0)
+            return 0;
+        cur = w->stack[--w->sp];
+    } while (cur.entry > q->t_limit);
+    w->cur = cur;
+    return 1;
+}
+
+static void query_run(query *q, int mode)
+{
+    walker w;
+    walker_init(&w);
+    while (query_step(q, &w, mode)) {
+    }
+}
+
+int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                      const isect_params *prm, isect_hit *hits, int64_t cap)
+{
+    (void)f;
+    query q;
+    query_init(&q, s->mesh, ray, prm);
+    if (!(ray->tmin <= ray->tmax))
+        return 0;
+    if (prm->flags & ISECT_ANY_HIT) {
+        /* Occlusion: the first hit found, as mesh_hit_first gives it. */
+        query_run(&q, QUERY_ANY);
+        if (q.found && cap > 0)
+            hits[0] = q.best;
+        return q.found;
+    }
+    q.hits = hits;
+    q.cap = cap;
+    query_run(&q, QUERY_ALL);
+    heap_sort(hits, q.count < cap ? q.count : cap);
+    return q.count;
+}
+
+int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+                   const isect_params *prm, isect_hit *out)
+{
+    (void)f;
+    query q;
+    query_init(&q, s->mesh, ray, prm);
+    if (!(ray->tmin <= ray->tmax))
+        return 0;
+    query_run(&q, (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST);
+    if (q.found)
+        *out = q.best;
+    return q.found;
+}
+
+/* ---------------------------------------------------------------- batch
+ *
+ * Closest (or any) hits of many rays, BATCH_LANES traversals in flight at
+ * once, taking one step each in turn. A large mesh's traversal waits on one
+ * cache miss per node; the prefetch a step issues for its next node
+ * completes while the other lanes step, so the misses of several rays
+ * overlap. Each lane runs exactly the steps mesh_hit_first runs, so every
+ * record is bit for bit the one the scalar path gives; rays are handled as
+ * isect_intersect_batch does (ray_check, transform, ISECT_INVALID and
+ * ISECT_MISS records).
+ */
+#define BATCH_LANES 8
+
+typedef struct lane {
+    query     q;
+    walker    w;
+    isect_ray object; /* the ray in object space */
+    int64_t   index;
+} lane;
+
+/* Starts the next ray that needs a traversal (writing the records of the
+ * ones that do not); 0 when there is none left. */
+static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int64_t n,
+                      int64_t *next, const isect_params *prm, isect_hit *closest)
+{
+    while (*next < n) {
+        int64_t i = (*next)++;
+        int status = ray_check(&rays[i]);
+        if (status == ISECT_OK) {
+            if (s->xform != NULL) {
+                xform_ray_unchecked(s->xform, &rays[i], &l->object);
+                status = ray_check(&l->object);
+            } else {
+                l->object = rays[i];
+            }
+        }
+        if (status != ISECT_OK) {
+            hit_set_miss(&closest[i], ISECT_INVALID);
+            continue;
+        }
+        if (!(l->object.tmin <= l->object.tmax)) {
+            hit_set_miss(&closest[i], ISECT_MISS);
+            continue;
+        }
+        query_init(&l->q, s->mesh, &l->object, prm);
+        walker_init(&l->w);
+        l->index = i;
+        return 1;
+    }
+    return 0;
+}
+
+int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
+                             const isect_ray *rays, int64_t n, const isect_params *prm,
+                             isect_hit *closest)
+{
+    (void)f;
+    int mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
+    lane lanes[BATCH_LANES];
+    int active[BATCH_LANES], live = 0;
+    int64_t next = 0, hit_count = 0;
+    for (int l = 0; l < BATCH_LANES; l++) {
+        active[l] = lane_start(&lanes[l], s, rays, n, &next, prm, closest);
+        live += active[l];
+    }
+    while (live > 0) {
+        for (int l = 0; l < BATCH_LANES; l++) {
+            if (!active[l] || query_step(&lanes[l].q, &lanes[l].w, mode))
+                continue;
+            isect_hit *out = &closest[lanes[l].index];
+            if (lanes[l].q.found) {
+                *out = lanes[l].q.best;
+                if (s->xform != NULL)
+                    xform_hits_unchecked(s->xform, out, 1);
+                hit_count++;
+            } else {
+                hit_set_miss(out, ISECT_MISS);
+            }
+            active[l] = lane_start(&lanes[l], s, rays, n, &next, prm, closest);
+            live -= !active[l];
+        }
+    }
+    return hit_count;
+}
+
+/* ------------------------------------------------------------ containment
+ *
+ * p is inside when it lies on the surface (the solid is a closed set, as
+ * the analytic solids are) or when the fixed ray from p in +x crosses the
+ * surface an odd number of times. Every decision is exact on the input as
+ * given (no rounded projection): in the +x frame a point's 2D coordinates
+ * are its own (y, z), so orient2_sign_perturbed can take p's (y, z) as the
+ * query point and the perturbed line through it crosses each fan triangle
+ * or not, consistently across shared edges; orient3_sign then says on
+ * which side of p the crossing is. A claimed fan triangle whose plane
+ * passes through p has p in it (closed) and is found by the on-surface
+ * test instead; it is not a crossing beyond p.
+ */
+
+/* The +x ray's 2D coordinates of a point. */
+static void yz_of(const double v[3], double out[2])
+{
+    out[0] = v[1];
+    out[1] = v[2];
+}
+
+/* 1 when p lies in the closed triangle a, b, c (exactly); 0 also for a
+ * triangle of zero area. */
+static int point_in_closed_triangle(const double a[3], const double b[3], const double c[3],
+                                    const double p[3])
+{
+    if (orient3_sign(a, b, c, p) != 0)
+        return 0;
+    /* A coordinate plane onto which the triangle projects with nonzero
+     * area: its normal's largest component (approximately) first. */
+    double e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = b[k] - a[k];
+        e2[k] = c[k] - a[k];
+    }
+    n[0] = fabs(e1[1] * e2[2] - e1[2] * e2[1]);
+    n[1] = fabs(e1[2] * e2[0] - e1[0] * e2[2]);
+    n[2] = fabs(e1[0] * e2[1] - e1[1] * e2[0]);
+    int order[3] = { 0, 1, 2 };
+    for (int i = 1; i < 3; i++)
+        for (int j = i; j > 0 && n[order[j]] > n[order[j - 1]]; j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    for (int i = 0; i < 3; i++) {
+        int drop = order[i], u = (drop + 1) % 3, w = (drop + 2) % 3;
+        const double a2[2] = { a[u], a[w] }, b2[2] = { b[u], b[w] }, c2[2] = { c[u], c[w] };
+        const double p2[2] = { p[u], p[w] };
+        int s = orient2_sign(a2, b2, c2);
+        if (s == 0)
+            continue;
+        return orient2_sign(a2, b2, p2) != -s && orient2_sign(b2, c2, p2) != -s
+            && orient2_sign(c2, a2, p2) != -s;
+    }
+    return 0;
+}
+
+/* 1 when p lies on the closed segment a-b. */
+static int point_on_segment(const double a[3], const double b[3], const double p[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (p[k] < (a[k] < b[k] ? a[k] : b[k]) || p[k] > (a[k] < b[k] ? b[k] : a[k]))
+            return 0;
+    return collinear3(a, b, p);
+}
+
+/* The face's vertex i. */
+static const double *face_vertex(const isect_mesh *m, const mesh_prim *pr, int i)
+{
+    if (pr->nverts == 3)
+        return pr->v + 3 * i;
+    return mesh_vertex(m, m->idx[mesh_face_start(m, pr->face) + i]);
+}
+
+/* p on the closed face: for a triangle, in it; for a polygon, on one of its
+ * edges, or on one of its fan triangles and inside its outline seen along
+ * that triangle's normal (the even-odd rule, with the library's perturbed
+ * rule for points on a projected edge line). For a planar polygon this is
+ * exactly the closed polygon; fold regions of a concave fan (covered twice,
+ * with opposite orientations) are excluded. */
+static int point_on_face(const isect_mesh *m, const mesh_prim *pr, const double p[3])
+{
+    int n = pr->nverts;
+    if (n == 3)
+        return point_in_closed_triangle(pr->v, pr->v + 3, pr->v + 6, p);
+    for (int i = 0; i < n; i++)
+        if (point_on_segment(face_vertex(m, pr, i), face_vertex(m, pr, (i + 1) % n), p))
+            return 1;
+    const double *v0 = face_vertex(m, pr, 0);
+    for (int i = 1; i + 1 < n; i++) {
+        const double *b = face_vertex(m, pr, i), *c = face_vertex(m, pr, i + 1);
+        if (!point_in_closed_triangle(v0, b, c, p))
+            continue;
+        /* Project along the axis of the fan triangle's largest normal
+         * component (nonzero: the triangle has area). */
+        double e1[3], e2[3], nrm[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = b[k] - v0[k];
+            e2[k] = c[k] - v0[k];
+        }
+        nrm[0] = fabs(e1[1] * e2[2] - e1[2] * e2[1]);
+        nrm[1] = fabs(e1[2] * e2[0] - e1[0] * e2[2]);
+        nrm[2] = fabs(e1[0] * e2[1] - e1[1] * e2[0]);
+        int drop = nrm[1] > nrm[0] ? 1 : 0;
+        drop = nrm[2] > nrm[drop] ? 2 : drop;
+        int u = (drop + 1) % 3, w = (drop + 2) % 3;
+        const double p2[2] = { p[u], p[w] };
+        int32_t winding = 0;
+        const double *prev = face_vertex(m, pr, n - 1);
+        for (int j = 0; j < n; j++) {
+            const double *cur = face_vertex(m, pr, j);
+            const double q0[2] = { prev[u], prev[w] }, q1[2] = { cur[u], cur[w] };
+            winding += winding_edge(q0, q1, p2);
+            prev = cur;
+        }
+        return fill_rule_inside(winding, ISECT_EVEN_ODD);
+    }
+    return 0;
+}
+
+/* Crossings of the perturbed +x ray from p with fan triangle a, b, c beyond
+ * p: 1 or 0. */
+static int fan_crossing(const double a[3], const double b[3], const double c[3],
+                        const double p[3], const double p2[2])
+{
+    /* Cheap rejections first: the triangle's (y, z) box must hold p's
+     * (y, z) (a point strictly outside stays outside when perturbed), and
+     * some vertex must lie at x >= p.x. */
+    if ((a[1] < p[1] && b[1] < p[1] && c[1] < p[1]) || (a[1] > p[1] && b[1] > p[1] && c[1] > p[1])
+        || (a[2] < p[2] && b[2] < p[2] && c[2] < p[2]) || (a[2] > p[2] && b[2] > p[2] && c[2] > p[2])
+        || (a[0] < p[0] && b[0] < p[0] && c[0] < p[0]))
+        return 0;
+    double a2[2], b2[2], c2[2];
+    yz_of(a, a2);
+    yz_of(b, b2);
+    yz_of(c, c2);
+    int s = orient2_sign_perturbed(a2, b2, p2);
+    if (s == 0 || orient2_sign_perturbed(b2, c2, p2) != s
+        || orient2_sign_perturbed(c2, a2, p2) != s)
+        return 0;
+    /* Claimed; s is the sign of the normal's x component, so the crossing
+     * lies beyond p exactly when det(a-p, b-p, c-p) has the sign s. */
+    return orient3_sign(a, b, c, p) == s;
+}
+
+int mesh_contains(const isect_shape *s, const double p[3])
+{
+    const isect_mesh *m = s->mesh;
+    const bvh_node *nodes = m->tree.nodes;
+    double p2[2];
+    yz_of(p, p2);
+    int32_t stack[BVH_STACK_SIZE];
+    int sp = 0;
+    int32_t cur = 0;
+    int crossings = 0;
+    for (;;) {
+        const bvh_node *n = &nodes[cur];
+        /* Children met by the ray from p in +x, or holding p: closed boxes
+         * (conservative, the perturbation being infinitesimal). */
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            if (!(n->bounds[1][c] <= p[1] && p[1] <= n->bounds[4][c]
+                  && n->bounds[2][c] <= p[2] && p[2] <= n->bounds[5][c]
+                  && p[0] <= n->bounds[3][c]))
+                continue;
+            if (n->child[c] >= 0) {
+                stack[sp++] = n->child[c];
+                continue;
+            }
+            int32_t first = ~n->child[c];
+            for (int i = 0; i < n->count[c]; i++) {
+                const mesh_prim *pr = &m->prims[first + i];
+                int nv = pr->nverts;
+                /* On the surface: the closed set says inside. Only faces
+                 * whose box holds p can hold it. */
+                double lo[3], hi[3];
+                for (int k = 0; k < 3; k++)
+                    lo[k] = hi[k] = face_vertex(m, pr, 0)[k];
+                for (int j = 1; j < nv; j++) {
+                    const double *v = face_vertex(m, pr, j);
+                    for (int k = 0; k < 3; k++) {
+                        lo[k] = v[k] < lo[k] ? v[k] : lo[k];
+                        hi[k] = v[k] > hi[k] ? v[k] : hi[k];
+                    }
+                }
+                if (lo[0] <= p[0] && p[0] <= hi[0] && lo[1] <= p[1] && p[1] <= hi[1]
+                    && lo[2] <= p[2] && p[2] <= hi[2] && point_on_face(m, pr, p))
+                    return 1;
+                const double *v0 = face_vertex(m, pr, 0);
+                for (int j = 1; j + 1 < nv; j++)
+                    crossings += fan_crossing(v0, face_vertex(m, pr, j), face_vertex(m, pr, j + 1),
+                                              p, p2);
+            }
+        }
+        if (sp == 0)
+            break;
+        cur = stack[--sp];
+    }
+    return crossings & 1;
+}

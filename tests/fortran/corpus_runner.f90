@@ -1,0 +1,1290 @@
+! corpus_runner.f90 — runs the golden corpus through the Fortran module isect.
+!
+!     corpus_runner tests/cases/flat/*.txt
+!
+! The corpus is tests/cases/*.json (schema: tests/cases/README.md); Fortran
+! reads its flat text export tests/cases/flat/*.txt (format: the top of
+! tests/golden/export_flat.py), which carries every number exactly. Each case
+! goes through the same API paths as the C runner (tests/c/corpus_*.c), here
+! through the module's interfaces:
+!   intersect  isect_intersect and the type's scalar function (for a
+!              transformed case: isect_xform_ray + scalar + isect_xform_hits),
+!              each with a large buffer, cap 0 and cap 1; untransformed, the
+!              two agree bit for bit; isect_intersect_batch and
+!              isect_intersect_all_batch on 5 copies of the ray with a NaN
+!              origin in the middle one (closest hit = isect_intersect's first
+!              hit bit for bit, MISS / INVALID records, CSR offsets, a retry
+!              with a too-small cap); on an expected error: the status, and
+!              nothing written.
+!   contains, point_in_polygon2, winding_number2: the scalar call, and the
+!              batch call on 4 copies of the point with a NaN one.
+!   polygon_normal, plane_from_points: status and values.
+! Values pass when |got - want| <= tol * max(1, |want|); an infinite want must
+! be matched exactly. Each disagreement prints
+!     FAIL file:id name: what (expected X, got Y)
+! and the run ends with "N skipped" (cases the export marks skip, e.g.
+! meshes) and then the line "N passed, N failed" (N counting cases; a broken
+! file counts as one failed entry); exit status 1 if anything failed.
+program corpus_runner
+    use, intrinsic :: iso_c_binding
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
+        ieee_quiet_nan
+    use isect
+    implicit none
+
+    ! Room for every hit any case can have; a count above it is a failure.
+    integer, parameter :: HIT_CAP = 64
+    ! Batches: copies of the case's ray / point with a bad one at BAD_*.
+    integer, parameter :: BATCH_RAYS = 5, BAD_RAY = 3
+    integer, parameter :: POINT_BATCH = 4, BAD_POINT = 3
+    integer, parameter :: ALL_CAP = BATCH_RAYS * HIT_CAP + 1
+    ! Zero doubles after a shape's data (see "shape" in apply_line).
+    integer, parameter :: DATA_PADDING = 16
+    ! After this many lines a case's further failures are only counted.
+    integer, parameter :: MAX_LINES = 12
+    ! Every byte of an output buffer is preset to 0xA5 (as the C runner
+    ! does); a byte still holding it was not written.
+    integer(c_int8_t), parameter :: GUARD_BYTE = -91_c_int8_t
+    ! INT32_MIN, the winding of a non-finite point in batch output (as a
+    ! 64-bit value: standard Fortran integers are symmetric about 0).
+    integer(c_int64_t), parameter :: WINDING_INVALID = -2147483648_c_int64_t
+    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/1"
+
+    type :: expected_hit
+        real(c_double) :: t = 0, point(3) = 0, normal(3) = 0, uv(2) = 0
+        logical :: has_uv = .false.
+        integer(c_int32_t) :: prim = 0, kind = 0
+    end type expected_hit
+
+    ! One case block of a flat file.
+    type :: corpus_case
+        character(len=:), allocatable :: label, name, op, problem
+        logical :: malformed = .false., skipped = .false.
+        integer(c_int32_t) :: shape_type = 0, shape_n = 0, shape_flags = 0
+        logical :: named = .false.
+        logical :: has_data = .false.              ! else isect_shape%data is NULL
+        integer :: ndata = 0                       ! numbers given; data(:) is padded
+        real(c_double), allocatable :: data(:)
+        logical :: has_transform = .false.
+        real(c_double) :: transform(16) = 0
+        type(isect_ray) :: ray = isect_ray(0.0_c_double, 0.0_c_double, 0.0_c_double, 0.0_c_double)
+        logical :: has_opts = .false.
+        type(isect_opts) :: opts
+        real(c_double) :: point(3) = 0
+        integer :: point_dim = 0
+        real(c_double), allocatable :: polygon(:, :)    ! (2, n)
+        integer(c_int) :: rule = ISECT_EVEN_ODD
+        real(c_double), allocatable :: vertices(:, :)   ! (3, n)
+        real(c_double) :: tol_t = 1.0e-12_c_double, tol_point = 1.0e-12_c_double
+        real(c_double) :: tol_normal = 1.0e-12_c_double, tol_uv = 1.0e-12_c_double
+        integer(c_int) :: status = ISECT_OK
+        integer :: count = 0
+        logical :: listed = .false.
+        type(expected_hit), allocatable :: hits(:)
+        integer :: hits_read = 0
+        integer :: inside = 0
+        integer(c_int32_t) :: winding = 0
+        real(c_double) :: normal(3) = 0, plane(4) = 0
+    end type corpus_case
+
+    ! What every path of a case shares (set by transform_setup).
+    type(corpus_case), target :: cc
+    type(isect_xform), target :: xform
+    type(isect_shape) :: shape
+    type(c_ptr) :: opts_ptr
+    logical :: transformed
+
+    ! The report of the current case and the totals.
+    character(len=:), allocatable :: current_file, case_label, case_name
+    integer :: case_failures
+    integer :: passed = 0, failed = 0, skipped = 0
+
+    integer :: iarg
+    character(len=4096) :: path
+
+    if (command_argument_count() < 1) then
+        write (*, '(a)') "usage: corpus_runner FILE.txt..."
+        stop 2
+    end if
+    call check_reader()
+    do iarg = 1, command_argument_count()
+        call get_command_argument(iarg, path)
+        call run_file(trim(path))
+    end do
+    write (*, '(i0, a)') skipped, " skipped"
+    write (*, '(i0, a, i0, a)') passed, " passed, ", failed, " failed"
+    if (failed > 0) stop 1
+
+contains
+
+    ! ============================================================ report
+
+    subroutine begin_case(label, name)
+        character(len=*), intent(in) :: label, name
+        case_label = label
+        case_name = name
+        case_failures = 0
+    end subroutine begin_case
+
+    subroutine fail(message)
+        character(len=*), intent(in) :: message
+        case_failures = case_failures + 1
+        if (case_failures <= MAX_LINES) &
+            write (*, '(7a)') "FAIL ", current_file, ":", case_label, " ", case_name, &
+                ": " // message
+    end subroutine fail
+
+    subroutine end_case()
+        if (case_failures > MAX_LINES) &
+            write (*, '(6a, i0, a)') "FAIL ", current_file, ":", case_label, " ", case_name, &
+                ": ... and ", case_failures - MAX_LINES, " more not shown"
+        if (case_failures == 0) then
+            passed = passed + 1
+        else
+            failed = failed + 1
+        end if
+    end subroutine end_case
+
+    ! A problem with a file as a whole: one failed entry.
+    subroutine file_fail(file, message)
+        character(len=*), intent(in) :: file, message
+        write (*, '(4a)') "FAIL ", file, ": ", message
+        failed = failed + 1
+    end subroutine file_fail
+
+    function itoa(value) result(text)
+        integer(c_int64_t), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=24) :: buffer
+        write (buffer, '(i0)') value
+        text = trim(buffer)
+    end function itoa
+
+    function rtoa(value) result(text)
+        real(c_double), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+        if (ieee_is_nan(value)) then
+            text = "nan"
+        else if (.not. ieee_is_finite(value)) then
+            text = merge("inf ", "-inf", value > 0)
+            text = trim(text)
+        else
+            write (buffer, '(es24.16e3)') value
+            text = trim(adjustl(buffer))
+        end if
+    end function rtoa
+
+    function status_name(status) result(text)
+        integer(c_int64_t), intent(in) :: status
+        character(len=:), allocatable :: text
+        select case (status)
+        case (ISECT_OK)
+            text = "ok"
+        case (ISECT_E_ARG)
+            text = "E_ARG"
+        case (ISECT_E_NONFINITE)
+            text = "E_NONFINITE"
+        case (ISECT_E_DEGENERATE)
+            text = "E_DEGENERATE"
+        case (ISECT_E_NOMEM)
+            text = "E_NOMEM"
+        case default
+            text = "status " // itoa(status)
+        end select
+    end function status_name
+
+    function kind_name(kind) result(text)
+        integer(c_int32_t), intent(in) :: kind
+        character(len=:), allocatable :: text
+        select case (kind)
+        case (ISECT_MISS)
+            text = "miss"
+        case (ISECT_ENTER)
+            text = "enter"
+        case (ISECT_EXIT)
+            text = "exit"
+        case (ISECT_TOUCH)
+            text = "touch"
+        case (ISECT_INVALID)
+            text = "invalid"
+        case default
+            text = "kind " // itoa(int(kind, c_int64_t))
+        end select
+    end function kind_name
+
+    ! Each check sets ok to .false. when it fails (and never back to .true.),
+    ! so a caller can run several and look at the sum.
+    subroutine report_int(what, got, want, ok)
+        character(len=*), intent(in) :: what
+        integer(c_int64_t), intent(in) :: got, want
+        logical, intent(inout), optional :: ok
+        if (got == want) return
+        call fail(what // " (expected " // itoa(want) // ", got " // itoa(got) // ")")
+        if (present(ok)) ok = .false.
+    end subroutine report_int
+
+    subroutine report_status(what, got, want, ok)
+        character(len=*), intent(in) :: what
+        integer(c_int64_t), intent(in) :: got
+        integer(c_int), intent(in) :: want
+        logical, intent(inout), optional :: ok
+        if (got == want) return
+        call fail(what // " (expected " // status_name(int(want, c_int64_t)) // ", got " // &
+                  status_name(got) // ")")
+        if (present(ok)) ok = .false.
+    end subroutine report_status
+
+    ! The corpus's tolerance rule.
+    logical function corpus_near(got, want, tol)
+        real(c_double), intent(in) :: got, want, tol
+        if (ieee_is_nan(want)) then
+            corpus_near = ieee_is_nan(got)
+        else if (.not. ieee_is_finite(want)) then
+            corpus_near = .not. ieee_is_finite(got) .and. .not. ieee_is_nan(got) .and. &
+                          (got > 0 .eqv. want > 0)
+        else
+            corpus_near = abs(got - want) <= tol * max(1.0_c_double, abs(want))
+        end if
+    end function corpus_near
+
+    subroutine report_near(what, got, want, tol, ok)
+        character(len=*), intent(in) :: what
+        real(c_double), intent(in) :: got(:), want(:)
+        real(c_double), intent(in) :: tol
+        logical, intent(inout), optional :: ok
+        integer :: i
+        do i = 1, size(want)
+            if (corpus_near(got(i), want(i), tol)) cycle
+            if (size(want) == 1) then
+                call fail(what // " (expected " // rtoa(want(i)) // ", got " // &
+                          rtoa(got(i)) // ", tol " // rtoa(tol) // ")")
+            else
+                call fail(what // "[" // itoa(int(i - 1, c_int64_t)) // "] (expected " // &
+                          rtoa(want(i)) // ", got " // rtoa(got(i)) // ", tol " // &
+                          rtoa(tol) // ")")
+            end if
+            if (present(ok)) ok = .false.
+            return
+        end do
+    end subroutine report_near
+
+    ! ============================================================ guards
+
+    function guard_hit() result(hit)
+        type(isect_hit) :: hit
+        integer(c_int8_t) :: bytes(80)
+        bytes = GUARD_BYTE
+        hit = transfer(bytes, hit)
+    end function guard_hit
+
+    logical function hits_untouched(hits)
+        type(isect_hit), intent(in) :: hits(:)
+        integer(c_int8_t) :: mold(1)
+        hits_untouched = all(transfer(hits, mold) == GUARD_BYTE)
+    end function hits_untouched
+
+    subroutine report_hits_untouched(what, hits)
+        character(len=*), intent(in) :: what
+        type(isect_hit), intent(in) :: hits(:)
+        if (.not. hits_untouched(hits)) call fail(what // " (expected untouched, got written)")
+    end subroutine report_hits_untouched
+
+    logical function bytes_untouched_i64(values)
+        integer(c_int64_t), intent(in) :: values(:)
+        integer(c_int8_t) :: mold(1)
+        bytes_untouched_i64 = all(transfer(values, mold) == GUARD_BYTE)
+    end function bytes_untouched_i64
+
+    function guard_i64() result(value)
+        integer(c_int64_t) :: value
+        integer(c_int8_t) :: bytes(8)
+        bytes = GUARD_BYTE
+        value = transfer(bytes, value)
+    end function guard_i64
+
+    function guard_i32() result(value)
+        integer(c_int32_t) :: value
+        integer(c_int8_t) :: bytes(4)
+        bytes = GUARD_BYTE
+        value = transfer(bytes, value)
+    end function guard_i32
+
+    ! ============================================================ hits
+
+    ! The returned count and each listed hit (prim and kind exactly, the
+    ! rest within tolerance), over the first min(count, written) hits.
+    subroutine report_expected_hits(what, hits, count, written)
+        character(len=*), intent(in) :: what
+        type(isect_hit), intent(in) :: hits(:)
+        integer, intent(in) :: count, written
+        integer :: i
+        character(len=:), allocatable :: field
+        call report_int(what // ": hit count", int(count, c_int64_t), int(cc%count, c_int64_t))
+        if (.not. cc%listed) return
+        do i = 1, min(count, written, cc%count)
+            field = what // ": hit " // itoa(int(i - 1, c_int64_t))
+            if (hits(i)%kind /= cc%hits(i)%kind) &
+                call fail(field // " kind (expected " // kind_name(cc%hits(i)%kind) // &
+                          ", got " // kind_name(hits(i)%kind) // ")")
+            call report_int(field // " prim", int(hits(i)%prim, c_int64_t), &
+                            int(cc%hits(i)%prim, c_int64_t))
+            call report_near(field // " t", [hits(i)%t], [cc%hits(i)%t], cc%tol_t)
+            call report_near(field // " point", hits(i)%point, cc%hits(i)%point, cc%tol_point)
+            call report_near(field // " normal", hits(i)%normal, cc%hits(i)%normal, &
+                             cc%tol_normal)
+            if (cc%hits(i)%has_uv) &
+                call report_near(field // " uv", hits(i)%uv, cc%hits(i)%uv, cc%tol_uv)
+        end do
+    end subroutine report_expected_hits
+
+    logical function same_hit(a, b)
+        type(isect_hit), intent(in) :: a, b
+        integer(c_int64_t) :: mold(1)
+        same_hit = all(transfer(a, mold) == transfer(b, mold))
+    end function same_hit
+
+    ! got and want must have the same bits; names the first field that
+    ! differs.
+    subroutine report_same_hit(what, got, want, ok)
+        character(len=*), intent(in) :: what
+        type(isect_hit), intent(in) :: got, want
+        logical, intent(inout), optional :: ok
+        character(len=9), parameter :: names(9) = [character(len=9) :: "t", "point[0]", &
+            "point[1]", "point[2]", "normal[0]", "normal[1]", "normal[2]", "uv[0]", "uv[1]"]
+        real(c_double) :: got_values(9), want_values(9)
+        integer :: i
+        if (same_hit(got, want)) return
+        if (present(ok)) ok = .false.
+        got_values = [got%t, got%point, got%normal, got%uv]
+        want_values = [want%t, want%point, want%normal, want%uv]
+        do i = 1, 9
+            if (transfer(got_values(i), 0_c_int64_t) /= transfer(want_values(i), 0_c_int64_t)) &
+                then
+                call fail(what // ": " // trim(names(i)) // " differs in its bits (expected " &
+                          // rtoa(want_values(i)) // ", got " // rtoa(got_values(i)) // ")")
+                return
+            end if
+        end do
+        if (got%prim /= want%prim) then
+            call fail(what // ": prim differs (expected " // itoa(int(want%prim, c_int64_t)) &
+                      // ", got " // itoa(int(got%prim, c_int64_t)) // ")")
+        else
+            call fail(what // ": kind differs (expected " // kind_name(want%kind) // ", got " &
+                      // kind_name(got%kind) // ")")
+        end if
+    end subroutine report_same_hit
+
+    ! A batch MISS (t = +inf) or INVALID (t = NaN) record: prim -1, the rest 0.
+    subroutine report_batch_record(what, h, kind)
+        character(len=*), intent(in) :: what
+        type(isect_hit), intent(in) :: h
+        integer(c_int32_t), intent(in) :: kind
+        logical :: t_right
+        if (h%kind /= kind) call fail(what // ": kind (expected " // kind_name(kind) // &
+                                      ", got " // kind_name(h%kind) // ")")
+        if (kind == ISECT_MISS) then
+            t_right = .not. ieee_is_finite(h%t) .and. .not. ieee_is_nan(h%t) .and. h%t > 0
+        else
+            t_right = ieee_is_nan(h%t)
+        end if
+        if (.not. t_right) call fail(what // ": t (expected " // &
+                                     merge("+inf", "nan ", kind == ISECT_MISS) // ", got " // &
+                                     rtoa(h%t) // ")")
+        if (h%prim /= -1) call fail(what // ": prim (expected -1, got " // &
+                                    itoa(int(h%prim, c_int64_t)) // ")")
+        if (any(transfer([h%point, h%normal, h%uv], 0_c_int64_t, 8) /= 0)) &
+            call fail(what // ": point/normal/uv (expected all 0)")
+    end subroutine report_batch_record
+
+    ! ============================================================ paths
+
+    ! Fill `bound` (module state: shape, opts_ptr, transformed) for the
+    ! current case. When isect_xform_init fails its status is the case's
+    ! result: it is checked and .false. returned (the case is finished).
+    logical function transform_setup()
+        integer(c_int) :: status
+        shape = isect_shape(type=cc%shape_type, n=cc%shape_n, flags=cc%shape_flags)
+        if (cc%has_data) shape%data = c_loc(cc%data)
+        opts_ptr = c_null_ptr
+        if (cc%has_opts) opts_ptr = c_loc(cc%opts)
+        transformed = .false.
+        transform_setup = .true.
+        if (.not. cc%has_transform) return
+        status = isect_xform_init(xform, cc%transform)
+        if (status /= ISECT_OK) then
+            call report_status("isect_xform_init", int(status, c_int64_t), cc%status)
+            transform_setup = .false.
+            return
+        end if
+        shape%xform = c_loc(xform)
+        transformed = .true.
+    end function transform_setup
+
+    function scalar_name() result(name)
+        character(len=:), allocatable :: name
+        select case (cc%shape_type)
+        case (ISECT_PLANE)
+            name = "isect_ray_plane"
+        case (ISECT_SPHERE)
+            name = "isect_ray_sphere"
+        case (ISECT_AABB)
+            name = "isect_ray_aabb"
+        case (ISECT_TRIANGLE)
+            name = "isect_ray_triangle"
+        case (ISECT_POLYGON)
+            name = "isect_ray_polygon"
+        case (ISECT_CONVEX)
+            name = "isect_ray_convex"
+        case (ISECT_CYLINDER)
+            name = "isect_ray_cylinder"
+        case (ISECT_CYLINDER_INF)
+            name = "isect_ray_cylinder_inf"
+        case (ISECT_ELLIPSOID)
+            name = "isect_ray_ellipsoid"
+        case (ISECT_QUADRIC)
+            name = "isect_ray_quadric"
+        case default
+            name = "(no scalar function)"
+        end select
+        if (transformed) name = "isect_xform_ray+" // name // "+isect_xform_hits"
+    end function scalar_name
+
+    ! The named type's scalar function on the case's data, through the
+    ! module's C-form interfaces.
+    function scalar_call(ray, hits, cap) result(nhits)
+        type(isect_ray), intent(in) :: ray
+        type(isect_hit), intent(inout) :: hits(:)
+        integer(c_int), intent(in) :: cap
+        integer(c_int) :: nhits
+        associate (d => cc%data, n => cc%shape_n)
+            select case (cc%shape_type)
+            case (ISECT_PLANE)
+                nhits = isect_ray_plane(ray, d(1:3), d(4), opts_ptr, hits, cap)
+            case (ISECT_SPHERE)
+                nhits = isect_ray_sphere(ray, d(1:3), d(4), opts_ptr, hits, cap)
+            case (ISECT_AABB)
+                nhits = isect_ray_aabb(ray, d(1:3), d(4:6), opts_ptr, hits, cap)
+            case (ISECT_TRIANGLE)
+                nhits = isect_ray_triangle(ray, d(1:3), d(4:6), d(7:9), opts_ptr, hits, cap)
+            case (ISECT_POLYGON)
+                nhits = isect_ray_polygon(ray, reshape(d, [3, n]), n, cc%shape_flags, &
+                                          opts_ptr, hits, cap)
+            case (ISECT_CONVEX)
+                nhits = isect_ray_convex(ray, reshape(d, [4, n]), n, opts_ptr, hits, cap)
+            case (ISECT_CYLINDER)
+                nhits = isect_ray_cylinder(ray, d(1:3), d(4:6), d(7), cc%shape_flags, &
+                                           opts_ptr, hits, cap)
+            case (ISECT_CYLINDER_INF)
+                nhits = isect_ray_cylinder_inf(ray, d(1:3), d(4:6), d(7), opts_ptr, hits, cap)
+            case (ISECT_ELLIPSOID)
+                nhits = isect_ray_ellipsoid(ray, d(1:3), d(4:6), opts_ptr, hits, cap)
+            case (ISECT_QUADRIC)
+                nhits = isect_ray_quadric(ray, d(1:10), opts_ptr, hits, cap)
+            case default
+                nhits = ISECT_E_ARG   ! only named types get here; each has a case
+            end select
+        end associate
+    end function scalar_call
+
+    ! One way of computing the case's hits (path 1: isect_intersect; path 2:
+    ! the scalar function, composed with the transform by hand), with the
+    ! contract of isect_intersect.
+    function run_path(path_id, hits, cap) result(nhits)
+        integer, intent(in) :: path_id
+        type(isect_hit), intent(inout) :: hits(:)
+        integer(c_int), intent(in) :: cap
+        integer(c_int) :: nhits
+        type(isect_ray) :: object_ray
+        integer(c_int) :: status
+        if (path_id == 1) then
+            nhits = isect_intersect(shape, cc%ray, opts_ptr, hits, cap)
+            return
+        end if
+        object_ray = cc%ray
+        if (transformed) then
+            status = isect_xform_ray(xform, cc%ray, object_ray)
+            if (status < 0) then
+                nhits = status
+                return
+            end if
+        end if
+        nhits = scalar_call(object_ray, hits, cap)
+        if (nhits > 0 .and. cap > 0 .and. transformed) then
+            status = isect_xform_hits(xform, hits, min(nhits, cap))
+            if (status < 0) nhits = status
+        end if
+    end function run_path
+
+    ! A path on a case expected to succeed: its hits (in out) and count, or
+    ! -1 when it failed or overflowed the buffer.
+    function check_path_ok(name, path_id, out) result(count)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: path_id
+        type(isect_hit), intent(out) :: out(HIT_CAP)
+        integer :: count
+        type(isect_hit) :: buf(HIT_CAP), pair(2), none(0)
+        integer :: written
+        integer(c_int) :: again
+
+        buf = guard_hit()
+        count = run_path(path_id, buf, int(HIT_CAP, c_int))
+        out = buf
+        if (count < 0) then
+            call report_status(name, int(count, c_int64_t), ISECT_OK)
+            count = -1
+            return
+        end if
+        call report_expected_hits(name, buf, count, HIT_CAP)
+        written = min(count, HIT_CAP)
+        call report_hits_untouched(name // ": records past its " // &
+                                   itoa(int(written, c_int64_t)) // " hits", buf(written + 1:))
+        if (count > HIT_CAP) then
+            call fail(name // ": more hits than the runner's buffer")
+            count = -1
+            return
+        end if
+
+        again = run_path(path_id, none, 0_c_int)
+        call report_int(name // " with cap 0: return", int(again, c_int64_t), &
+                        int(count, c_int64_t))
+        pair = guard_hit()
+        again = run_path(path_id, pair, 1_c_int)
+        call report_int(name // " with cap 1: return", int(again, c_int64_t), &
+                        int(count, c_int64_t))
+        if (count >= 1) then
+            call report_same_hit(name // " with cap 1: hit 0 vs the large-buffer call", &
+                                 pair(1), buf(1))
+        else
+            call report_hits_untouched(name // " with cap 1 and no hits: record 0", pair(1:1))
+        end if
+        call report_hits_untouched(name // " with cap 1: record 1 (past cap)", pair(2:2))
+    end function check_path_ok
+
+    ! A path on a case expected to fail: the status, and nothing written.
+    subroutine check_path_error(name, path_id)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: path_id
+        type(isect_hit) :: buf(HIT_CAP), none(0)
+        integer(c_int) :: status
+        buf = guard_hit()
+        status = run_path(path_id, buf, int(HIT_CAP, c_int))
+        call report_status(name, int(status, c_int64_t), cc%status)
+        if (status < 0) call report_hits_untouched(name // ": hit buffer after an error", buf)
+        status = run_path(path_id, none, 0_c_int)
+        call report_status(name // " with cap 0", int(status, c_int64_t), cc%status)
+    end subroutine check_path_error
+
+    subroutine check_intersect_case()
+        type(isect_hit) :: reference(HIT_CAP), scalar_hits(HIT_CAP)
+        integer :: ref_count, scalar_count, i
+        logical :: ok
+
+        if (.not. transform_setup()) return
+        if (cc%status /= ISECT_OK) then
+            call check_path_error("isect_intersect", 1)
+            if (cc%named) call check_path_error(scalar_name(), 2)
+            call check_batch_error()
+            return
+        end if
+        ref_count = check_path_ok("isect_intersect", 1, reference)
+        if (cc%named) then
+            scalar_count = check_path_ok(scalar_name(), 2, scalar_hits)
+            ! Untransformed, isect_intersect is documented to give the
+            ! scalar function's hits: every bit agrees.
+            if (.not. transformed .and. ref_count >= 0 .and. scalar_count == ref_count) then
+                ok = .true.
+                do i = 1, ref_count
+                    call report_same_hit("isect_intersect hit " // itoa(int(i - 1, c_int64_t)) &
+                                         // " vs " // scalar_name() // " hit " // &
+                                         itoa(int(i - 1, c_int64_t)), reference(i), &
+                                         scalar_hits(i), ok)
+                    if (.not. ok) exit
+                end do
+            end if
+        end if
+        ! The batch results are defined as isect_intersect's.
+        if (ref_count < 0) return
+        call check_batch_ok(reference, ref_count)
+        call check_all_batch_ok(reference, ref_count)
+    end subroutine check_intersect_case
+
+    ! ============================================================ batches
+
+    function make_batch_rays() result(rays)
+        type(isect_ray) :: rays(BATCH_RAYS)
+        rays = cc%ray
+        rays(BAD_RAY)%org(1) = ieee_value(1.0_c_double, ieee_quiet_nan)
+    end function make_batch_rays
+
+    ! The status the header gives a bad ray (ISECT_OK for a good one).
+    integer(c_int) function ray_status(ray)
+        type(isect_ray), intent(in) :: ray
+        ray_status = ISECT_OK
+        if (.not. all(ieee_is_finite([ray%org, ray%dir])) .or. ieee_is_nan(ray%tmin) .or. &
+            ieee_is_nan(ray%tmax)) then
+            ray_status = ISECT_E_NONFINITE
+        else if (all(abs(ray%dir) <= 0.0_c_double)) then
+            ray_status = ISECT_E_DEGENERATE
+        end if
+    end function ray_status
+
+    subroutine check_batch_ok(reference, ref_count)
+        type(isect_hit), intent(in) :: reference(:)
+        integer, intent(in) :: ref_count
+        type(isect_ray) :: rays(BATCH_RAYS)
+        type(isect_hit) :: closest(BATCH_RAYS + 1)
+        integer(c_int64_t) :: got
+        integer :: i
+        character(len=:), allocatable :: what
+
+        rays = make_batch_rays()
+        closest = guard_hit()
+        got = isect_intersect_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, closest)
+        call report_int("isect_intersect_batch: return (rays hit)", got, &
+                        int(merge(BATCH_RAYS - 1, 0, ref_count > 0), c_int64_t))
+        if (got < 0) return
+        do i = 1, BATCH_RAYS
+            what = "isect_intersect_batch: ray " // itoa(int(i - 1, c_int64_t))
+            if (i == BAD_RAY) then
+                call report_batch_record(what // " (NaN origin)", closest(i), ISECT_INVALID)
+            else if (ref_count > 0) then
+                call report_same_hit(what // " closest vs isect_intersect's first hit", &
+                                     closest(i), reference(1))
+            else
+                call report_batch_record(what // " (no hit)", closest(i), ISECT_MISS)
+            end if
+        end do
+        call report_hits_untouched("isect_intersect_batch: record past n", &
+                                   closest(BATCH_RAYS + 1:))
+    end subroutine check_batch_ok
+
+    subroutine check_all_batch_ok(reference, ref_count)
+        type(isect_hit), intent(in) :: reference(:)
+        integer, intent(in) :: ref_count
+        character(len=*), parameter :: name = "isect_intersect_all_batch"
+        type(isect_ray) :: rays(BATCH_RAYS)
+        integer(c_int64_t) :: offsets(BATCH_RAYS + 2), got, total, written, j
+        type(isect_hit) :: hits(ALL_CAP + 1)
+        integer :: i
+        logical :: ok
+
+        rays = make_batch_rays()
+        total = int(BATCH_RAYS - 1, c_int64_t) * ref_count + 1
+        offsets = guard_i64()
+        hits = guard_hit()
+        got = isect_intersect_all_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, &
+                                        offsets, hits, int(ALL_CAP, c_int64_t))
+        ok = .true.
+        call report_int(name // ": return (total hits)", got, total, ok)
+        if (.not. ok .or. got < 0) return
+        written = min(got, int(ALL_CAP, c_int64_t))
+
+        ! Offsets: 0, then growing by each ray's count, within what was written.
+        call report_int(name // ": offsets[0]", offsets(1), 0_c_int64_t, ok)
+        do i = 1, BATCH_RAYS
+            call report_int(name // ": offsets[" // itoa(int(i, c_int64_t)) // "] - offsets[" &
+                            // itoa(int(i - 1, c_int64_t)) // "]", offsets(i + 1) - offsets(i), &
+                            int(merge(1, ref_count, i == BAD_RAY), c_int64_t), ok)
+        end do
+        if (ok .and. offsets(BATCH_RAYS + 1) > written) then
+            call fail(name // ": offsets[n] is past the records written")
+            ok = .false.
+        end if
+        ! Each ray's hits equal isect_intersect's, bit for bit; the bad ray
+        ! has one INVALID record.
+        if (ok) then
+            rays_loop: do i = 1, BATCH_RAYS
+                do j = offsets(i) + 1, offsets(i + 1)
+                    if (i == BAD_RAY) then
+                        call report_batch_record(name // ": ray " // itoa(int(i - 1, c_int64_t)) &
+                                                 // " record", hits(j), ISECT_INVALID)
+                    else
+                        call report_same_hit(name // ": ray " // itoa(int(i - 1, c_int64_t)) // &
+                                             " hit " // itoa(j - offsets(i) - 1), hits(j), &
+                                             reference(j - offsets(i)), ok)
+                        if (.not. ok) exit rays_loop
+                    end if
+                end do
+            end do rays_loop
+        end if
+        if (.not. bytes_untouched_i64(offsets(BATCH_RAYS + 2:))) &
+            call fail(name // ": offsets[n+1] (past the end) (expected untouched, got written)")
+        call report_hits_untouched(name // ": records past the " // itoa(written) // &
+                                   " written", hits(written + 1:))
+
+        ! total >= 1 always (the bad ray's record), so total - 1 is a valid cap.
+        call check_all_batch_short(rays, total - 1, total, offsets, hits)
+        if (total - 1 /= 0) call check_all_batch_short(rays, 0_c_int64_t, total, offsets, hits)
+    end subroutine check_all_batch_ok
+
+    ! A retry with a too-small cap: the same total and offsets, only the
+    ! first cap hits written.
+    subroutine check_all_batch_short(rays, cap, total, full_offsets, full_hits)
+        type(isect_ray), intent(in) :: rays(:)
+        integer(c_int64_t), intent(in) :: cap, total
+        integer(c_int64_t), intent(in) :: full_offsets(:)
+        type(isect_hit), intent(in) :: full_hits(:)
+        integer(c_int64_t) :: offsets(BATCH_RAYS + 2), got, i
+        type(isect_hit) :: hits(ALL_CAP + 1)
+        character(len=:), allocatable :: name
+        logical :: ok
+
+        name = "isect_intersect_all_batch with cap " // itoa(cap)
+        offsets = guard_i64()
+        hits = guard_hit()
+        got = isect_intersect_all_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, &
+                                        offsets, hits, cap)
+        ok = .true.
+        call report_int(name // ": return (the full total)", got, total, ok)
+        if (.not. ok .or. got < 0) return
+        do i = 1, BATCH_RAYS + 1
+            call report_int(name // ": offsets[" // itoa(i - 1) // "] vs the full call", &
+                            offsets(i), full_offsets(i))
+        end do
+        if (.not. bytes_untouched_i64(offsets(BATCH_RAYS + 2:))) &
+            call fail(name // ": offsets[n+1] (past the end) (expected untouched, got written)")
+        do i = 1, cap
+            call report_same_hit(name // ": hit record " // itoa(i - 1) // " vs the full call", &
+                                 hits(i), full_hits(i), ok)
+            if (.not. ok) exit
+        end do
+        call report_hits_untouched(name // ": records from cap on", hits(cap + 1:))
+    end subroutine check_all_batch_short
+
+    ! An expected error: when it is the ray's own (the case's ray is bad in
+    ! that way), the batches mark every ray INVALID and succeed; otherwise
+    ! (bad shape or opts) they fail with the status and write nothing.
+    subroutine check_batch_error()
+        type(isect_ray) :: rays(BATCH_RAYS)
+        type(isect_hit) :: closest(BATCH_RAYS + 1), hits(ALL_CAP + 1)
+        integer(c_int64_t) :: offsets(BATCH_RAYS + 2), got
+        integer :: i
+        logical :: ok
+
+        rays = make_batch_rays()
+        closest = guard_hit()
+        offsets = guard_i64()
+        hits = guard_hit()
+        if (ray_status(cc%ray) /= ISECT_OK .and. ray_status(cc%ray) == cc%status) then
+            got = isect_intersect_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, &
+                                        closest)
+            ok = .true.
+            call report_int("isect_intersect_batch with only bad rays: return", got, &
+                            0_c_int64_t, ok)
+            if (ok) then
+                do i = 1, BATCH_RAYS
+                    call report_batch_record("isect_intersect_batch: bad ray " // &
+                                             itoa(int(i - 1, c_int64_t)), closest(i), &
+                                             ISECT_INVALID)
+                end do
+            end if
+            got = isect_intersect_all_batch(shape, rays, int(BATCH_RAYS, c_int64_t), &
+                                            opts_ptr, offsets, hits, &
+                                            int(BATCH_RAYS + 1, c_int64_t))
+            ok = .true.
+            call report_int("isect_intersect_all_batch with only bad rays: return", got, &
+                            int(BATCH_RAYS, c_int64_t), ok)
+            if (.not. ok) return
+            do i = 1, BATCH_RAYS + 1
+                call report_int("isect_intersect_all_batch with only bad rays: offsets[" // &
+                                itoa(int(i - 1, c_int64_t)) // "]", offsets(i), &
+                                int(i - 1, c_int64_t))
+            end do
+            do i = 1, BATCH_RAYS
+                call report_batch_record("isect_intersect_all_batch: bad ray " // &
+                                         itoa(int(i - 1, c_int64_t)) // " record", hits(i), &
+                                         ISECT_INVALID)
+            end do
+            return
+        end if
+        got = isect_intersect_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, closest)
+        call report_status("isect_intersect_batch", got, cc%status)
+        if (got < 0) call report_hits_untouched("isect_intersect_batch: output after an error", &
+                                                closest)
+        got = isect_intersect_all_batch(shape, rays, int(BATCH_RAYS, c_int64_t), opts_ptr, &
+                                        offsets, hits, int(ALL_CAP, c_int64_t))
+        call report_status("isect_intersect_all_batch", got, cc%status)
+        if (got < 0) then
+            if (.not. bytes_untouched_i64(offsets)) &
+                call fail("isect_intersect_all_batch: offsets after an error " // &
+                          "(expected untouched, got written)")
+            call report_hits_untouched("isect_intersect_all_batch: hits after an error", hits)
+        end if
+    end subroutine check_batch_error
+
+    ! ============================================================ other ops
+
+    ! A scalar answer: the expected value, or the expected error status.
+    subroutine check_answer(name, got, answer)
+        character(len=*), intent(in) :: name
+        integer(c_int), intent(in) :: got
+        integer, intent(in) :: answer
+        if (cc%status == ISECT_OK .and. got >= 0) then
+            call report_int(name, int(got, c_int64_t), int(answer, c_int64_t))
+        else
+            call report_status(name, int(got, c_int64_t), cc%status)
+        end if
+    end subroutine check_answer
+
+    ! POINT_BATCH copies of the case's point (dim numbers each), one NaN.
+    function batch_points(dim) result(points)
+        integer, intent(in) :: dim
+        real(c_double) :: points(dim, POINT_BATCH)
+        integer :: i
+        do i = 1, POINT_BATCH
+            points(:, i) = cc%point(1:dim)
+        end do
+        points(1, BAD_POINT) = ieee_value(1.0_c_double, ieee_quiet_nan)
+    end function batch_points
+
+    ! A point batch's result: good points get `answer`, the NaN point
+    ! `invalid`, and the call returns ok_return. An expected E_NONFINITE
+    ! caused by the case's own point marks every point invalid instead; any
+    ! other expected error fails the call and writes nothing.
+    subroutine check_point_batch(name, got, values, untouched_past_end, untouched_all, &
+                                 answer_in, invalid, ok_return_in)
+        character(len=*), intent(in) :: name
+        integer(c_int64_t), intent(in) :: got
+        integer(c_int64_t), intent(in) :: values(POINT_BATCH)
+        logical, intent(in) :: untouched_past_end, untouched_all
+        integer(c_int64_t), intent(in) :: answer_in, invalid, ok_return_in
+        integer(c_int64_t) :: answer, ok_return
+        integer :: i
+        logical :: ok
+
+        answer = answer_in
+        ok_return = ok_return_in
+        if (cc%status /= ISECT_OK) then
+            if (all(ieee_is_finite(cc%point(1:cc%point_dim))) .or. &
+                cc%status /= ISECT_E_NONFINITE) then
+                call report_status(name, got, cc%status)
+                if (got < 0 .and. .not. untouched_all) &
+                    call fail(name // ": output after an error (expected untouched, got written)")
+                return
+            end if
+            answer = invalid
+            ok_return = 0
+        end if
+        ok = .true.
+        call report_int(name // ": return", got, ok_return, ok)
+        if (.not. ok .or. got < 0) return
+        do i = 1, POINT_BATCH
+            if (i == BAD_POINT) then
+                call report_int(name // ": point " // itoa(int(i - 1, c_int64_t)) // " (NaN)", &
+                                values(i), invalid)
+            else
+                call report_int(name // ": point " // itoa(int(i - 1, c_int64_t)), values(i), &
+                                answer)
+            end if
+        end do
+        if (.not. untouched_past_end) &
+            call fail(name // ": element past n (expected untouched, got written)")
+    end subroutine check_point_batch
+
+    subroutine check_contains_case()
+        real(c_double) :: points(3, POINT_BATCH)
+        integer(c_int8_t) :: inside(POINT_BATCH + 1)
+        integer(c_int64_t) :: got
+        integer(c_int) :: answer
+
+        if (.not. transform_setup()) return
+        answer = isect_contains(shape, cc%point)
+        call check_answer("isect_contains", answer, cc%inside)
+        points = batch_points(3)
+        inside = GUARD_BYTE
+        got = isect_contains_batch(shape, points, int(POINT_BATCH, c_int64_t), inside)
+        call check_point_batch("isect_contains_batch", got, &
+                               int(inside(1:POINT_BATCH), c_int64_t), &
+                               inside(POINT_BATCH + 1) == GUARD_BYTE, all(inside == GUARD_BYTE), &
+                               int(cc%inside, c_int64_t), int(ISECT_INVALID, c_int64_t), &
+                               int((POINT_BATCH - 1) * cc%inside, c_int64_t))
+    end subroutine check_contains_case
+
+    subroutine check_point_in_polygon2_case()
+        real(c_double) :: points(2, POINT_BATCH)
+        integer(c_int8_t) :: inside(POINT_BATCH + 1)
+        integer(c_int64_t) :: got
+        integer(c_int) :: answer, n
+
+        n = int(size(cc%polygon, 2), c_int)
+        answer = isect_point_in_polygon2(cc%polygon, n, cc%point(1:2), cc%rule)
+        call check_answer("isect_point_in_polygon2", answer, cc%inside)
+        points = batch_points(2)
+        inside = GUARD_BYTE
+        got = isect_point_in_polygon2_batch(cc%polygon, n, points, int(POINT_BATCH, c_int64_t), &
+                                            cc%rule, inside)
+        call check_point_batch("isect_point_in_polygon2_batch", got, &
+                               int(inside(1:POINT_BATCH), c_int64_t), &
+                               inside(POINT_BATCH + 1) == GUARD_BYTE, all(inside == GUARD_BYTE), &
+                               int(cc%inside, c_int64_t), int(ISECT_INVALID, c_int64_t), &
+                               int((POINT_BATCH - 1) * cc%inside, c_int64_t))
+    end subroutine check_point_in_polygon2_case
+
+    subroutine check_winding_number2_case()
+        real(c_double) :: points(2, POINT_BATCH)
+        integer(c_int32_t) :: winding, windings(POINT_BATCH + 1)
+        integer(c_int64_t) :: got
+        integer(c_int) :: status, n
+        logical :: ok
+
+        n = int(size(cc%polygon, 2), c_int)
+        winding = 0
+        status = isect_winding_number2(cc%polygon, n, cc%point(1:2), winding)
+        ok = .true.
+        call report_status("isect_winding_number2", int(status, c_int64_t), cc%status, ok)
+        if (ok .and. status == ISECT_OK) &
+            call report_int("isect_winding_number2: winding", int(winding, c_int64_t), &
+                            int(cc%winding, c_int64_t))
+        points = batch_points(2)
+        windings = guard_i32()
+        got = isect_winding_number2_batch(cc%polygon, n, points, int(POINT_BATCH, c_int64_t), &
+                                          windings)
+        call check_point_batch("isect_winding_number2_batch", got, &
+                               int(windings(1:POINT_BATCH), c_int64_t), &
+                               windings(POINT_BATCH + 1) == guard_i32(), &
+                               all(windings == guard_i32()), int(cc%winding, c_int64_t), &
+                               WINDING_INVALID, &
+                               int(merge(POINT_BATCH - 1, 0, cc%winding /= 0), c_int64_t))
+    end subroutine check_winding_number2_case
+
+    subroutine check_polygon_normal_case()
+        real(c_double) :: normal(3)
+        integer(c_int) :: status
+        logical :: ok
+        status = isect_polygon_normal(cc%vertices, int(size(cc%vertices, 2), c_int), normal)
+        ok = .true.
+        call report_status("isect_polygon_normal", int(status, c_int64_t), cc%status, ok)
+        if (ok .and. status == ISECT_OK) &
+            call report_near("isect_polygon_normal: normal", normal, cc%normal, cc%tol_normal)
+    end subroutine check_polygon_normal_case
+
+    ! The plane (a, b, c, d) is judged with the "normal" tolerance, as the C
+    ! runner does (the schema has no key of its own for it).
+    subroutine check_plane_from_points_case()
+        real(c_double) :: plane(4)
+        integer(c_int) :: status
+        logical :: ok
+        status = isect_plane_from_points(cc%vertices, int(size(cc%vertices, 2), c_int), plane)
+        ok = .true.
+        call report_status("isect_plane_from_points", int(status, c_int64_t), cc%status, ok)
+        if (ok .and. status == ISECT_OK) &
+            call report_near("isect_plane_from_points: plane", plane, cc%plane, cc%tol_normal)
+    end subroutine check_plane_from_points_case
+
+    subroutine run_case()
+        call begin_case(cc%label, cc%name)
+        if (cc%skipped) then
+            write (*, '(8a)') "SKIP ", current_file, ":", case_label, " ", case_name, ": ", &
+                cc%problem
+            skipped = skipped + 1
+            return
+        end if
+        if (cc%malformed) then
+            call fail("malformed case: " // cc%problem)
+        else
+            select case (cc%op)
+            case ("intersect")
+                call check_intersect_case()
+            case ("contains")
+                call check_contains_case()
+            case ("point_in_polygon2")
+                call check_point_in_polygon2_case()
+            case ("winding_number2")
+                call check_winding_number2_case()
+            case ("polygon_normal")
+                call check_polygon_normal_case()
+            case ("plane_from_points")
+                call check_plane_from_points_case()
+            case default
+                call fail("unknown op " // cc%op)
+            end select
+        end if
+        call end_case()
+    end subroutine run_case
+
+    ! ============================================================ reading
+
+    ! One line of any length (without its newline); ios < 0 at the end.
+    subroutine read_line(unit, line, ios)
+        integer, intent(in) :: unit
+        character(len=:), allocatable, intent(out) :: line
+        integer, intent(out) :: ios
+        character(len=1024) :: chunk
+        integer :: got
+        line = ""
+        do
+            read (unit, '(a)', advance='no', iostat=ios, size=got) chunk
+            line = line // chunk(1:got)
+            if (is_iostat_eor(ios)) then
+                ios = 0
+                return
+            end if
+            if (ios /= 0) return
+        end do
+    end subroutine read_line
+
+    ! The values after the key, read list-directed (Inf, -Inf and NaN
+    ! included); .false. when they are not n numbers.
+    logical function read_reals(text, values)
+        character(len=*), intent(in) :: text
+        real(c_double), intent(out) :: values(:)
+        integer :: ios
+        read (text, *, iostat=ios) values
+        read_reals = ios == 0
+    end function read_reals
+
+    logical function read_ints(text, values)
+        character(len=*), intent(in) :: text
+        integer(c_int64_t), intent(out) :: values(:)
+        integer :: ios
+        read (text, *, iostat=ios) values
+        read_ints = ios == 0
+    end function read_ints
+
+    ! "<n> x1 ... x_{width*n}" into a (width, n) array.
+    logical function read_table(text, width, table)
+        character(len=*), intent(in) :: text
+        integer, intent(in) :: width
+        real(c_double), allocatable, intent(out) :: table(:, :)
+        integer(c_int64_t) :: n(1)
+        integer :: ios
+        read_table = read_ints(text, n)
+        if (.not. read_table .or. n(1) < 0) then
+            read_table = .false.
+            return
+        end if
+        allocate (table(width, n(1)))
+        read (text, *, iostat=ios) n(1), table
+        read_table = ios == 0
+    end function read_table
+
+    ! Apply one line of a case block to cc; .false. for a bad line.
+    logical function apply_line(key, rest)
+        character(len=*), intent(in) :: key, rest
+        real(c_double) :: values(12)
+        integer(c_int64_t) :: ints(6)
+        integer :: k
+
+        apply_line = .true.
+        select case (key)
+        case ("name")
+            cc%name = rest
+        case ("flags")
+            continue                               ! informational
+        case ("malformed")
+            cc%malformed = .true.
+            cc%problem = rest
+        case ("skip")
+            cc%skipped = .true.
+            cc%problem = rest
+        case ("shape")
+            apply_line = read_ints(rest, ints(1:6))
+            if (.not. apply_line .or. ints(2) < 0 .or. ints(6) < 0) then
+                apply_line = .false.
+                return
+            end if
+            cc%shape_type = int(ints(1), c_int32_t)
+            cc%shape_n = int(ints(2), c_int32_t)
+            cc%shape_flags = int(ints(3), c_int32_t)
+            cc%named = ints(4) /= 0
+            cc%has_data = ints(5) /= 0
+            cc%ndata = int(ints(6))
+            ! Zero padding, as the C runner has: a raw type may name a type
+            ! whose function reads more numbers than the case gives.
+            allocate (cc%data(max(cc%ndata, 4 * cc%shape_n) + DATA_PADDING))
+            cc%data = 0
+        case ("data")
+            apply_line = allocated(cc%data)
+            if (apply_line) apply_line = read_reals(rest, cc%data(1:cc%ndata))
+        case ("transform")
+            apply_line = read_reals(rest, cc%transform)
+            cc%has_transform = .true.
+        case ("ray")
+            apply_line = read_reals(rest, values(1:8))
+            cc%ray = isect_ray(values(1:3), values(4:6), values(7), values(8))
+        case ("opts")
+            read (rest, *, iostat=k) ints(1), values(1)
+            apply_line = k == 0
+            cc%has_opts = .true.
+            cc%opts = isect_opts(flags=int(ints(1), c_int32_t), eps=values(1))
+        case ("point")
+            apply_line = read_ints(rest, ints(1:1))
+            if (.not. apply_line .or. ints(1) < 2 .or. ints(1) > 3) then
+                apply_line = .false.
+                return
+            end if
+            cc%point_dim = int(ints(1))
+            read (rest, *, iostat=k) ints(1), cc%point(1:cc%point_dim)
+            apply_line = k == 0
+        case ("polygon")
+            apply_line = read_table(rest, 2, cc%polygon)
+        case ("vertices")
+            apply_line = read_table(rest, 3, cc%vertices)
+        case ("rule")
+            apply_line = read_ints(rest, ints(1:1))
+            cc%rule = int(ints(1), c_int)
+        case ("tol")
+            apply_line = read_reals(rest, values(1:4))
+            cc%tol_t = values(1)
+            cc%tol_point = values(2)
+            cc%tol_normal = values(3)
+            cc%tol_uv = values(4)
+        case ("status")
+            apply_line = read_ints(rest, ints(1:1))
+            cc%status = int(ints(1), c_int)
+        case ("count")
+            apply_line = read_ints(rest, ints(1:2))
+            if (.not. apply_line .or. ints(1) < 0) then
+                apply_line = .false.
+                return
+            end if
+            cc%count = int(ints(1))
+            cc%listed = ints(2) /= 0
+            allocate (cc%hits(cc%count))
+        case ("hit")
+            apply_line = allocated(cc%hits)
+            if (apply_line) apply_line = cc%hits_read < size(cc%hits)
+            if (.not. apply_line) return
+            read (rest, *, iostat=k) values(1:9), ints(1:3)
+            apply_line = k == 0
+            cc%hits_read = cc%hits_read + 1
+            cc%hits(cc%hits_read) = expected_hit(values(1), values(2:4), values(5:7), &
+                                                 values(8:9), ints(1) /= 0, &
+                                                 int(ints(2), c_int32_t), int(ints(3), c_int32_t))
+        case ("inside")
+            apply_line = read_ints(rest, ints(1:1))
+            cc%inside = int(ints(1))
+        case ("winding")
+            apply_line = read_ints(rest, ints(1:1))
+            cc%winding = int(ints(1), c_int32_t)
+        case ("normal")
+            apply_line = read_reals(rest, cc%normal)
+        case ("plane")
+            apply_line = read_reals(rest, cc%plane)
+        case default
+            apply_line = .false.
+        end select
+    end function apply_line
+
+    subroutine run_file(file)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable :: line, key, rest
+        integer :: unit, ios, line_no, space, declared, blocks
+        logical :: in_case, header_ok
+
+        current_file = file
+        open (newunit=unit, file=file, status="old", action="read", iostat=ios)
+        if (ios /= 0) then
+            call file_fail(file, "cannot be opened")
+            return
+        end if
+        line_no = 0
+        declared = -1
+        blocks = 0
+        in_case = .false.
+        header_ok = .false.
+        do
+            call read_line(unit, line, ios)
+            if (ios /= 0) exit
+            line_no = line_no + 1
+            if (len_trim(line) == 0 .or. line(1:1) == "#") cycle
+            space = index(line, " ")
+            if (space == 0) then
+                key = trim(line)
+                rest = ""
+            else
+                key = line(1:space - 1)
+                rest = line(space + 1:)
+            end if
+
+            if (.not. in_case) then
+                select case (key)
+                case ("format")
+                    header_ok = rest == FLAT_FORMAT
+                    if (.not. header_ok) then
+                        call file_fail(file, "format (expected " // FLAT_FORMAT // ", got " // &
+                                       rest // "); cases not run")
+                        close (unit)
+                        return
+                    end if
+                case ("family")
+                    continue
+                case ("cases")
+                    read (rest, *, iostat=ios) declared
+                case ("case")
+                    if (.not. header_ok) then
+                        call file_fail(file, "no format line before the first case")
+                        close (unit)
+                        return
+                    end if
+                    cc = corpus_case()
+                    cc%op = "intersect"
+                    space = index(rest, " ")
+                    if (space > 0) then
+                        cc%label = rest(1:space - 1)
+                        cc%op = rest(space + 1:)
+                    else
+                        cc%label = rest
+                    end if
+                    cc%name = ""
+                    in_case = .true.
+                case default
+                    call file_fail(file, "line " // itoa(int(line_no, c_int64_t)) // &
+                                   ": unexpected " // key // "; file not run further")
+                    close (unit)
+                    return
+                end select
+                cycle
+            end if
+
+            if (key == "end") then
+                call run_case()
+                blocks = blocks + 1
+                in_case = .false.
+            else if (.not. apply_line(key, rest)) then
+                call file_fail(file, "line " // itoa(int(line_no, c_int64_t)) // ": bad " // &
+                               key // " line; file not run further")
+                close (unit)
+                return
+            end if
+        end do
+        close (unit)
+        if (in_case) call file_fail(file, "the last case has no end line")
+        if (declared /= blocks) &
+            call file_fail(file, "cases (expected " // itoa(int(declared, c_int64_t)) // &
+                           " blocks, got " // itoa(int(blocks, c_int64_t)) // ")")
+    end subroutine run_file
+
+    ! The flat format's promise: decimal text read list-directed gives every
+    ! double back exactly (shortest round-trip strings, as Python's repr
+    ! writes them; subnormals, extremes, a tie, signed zero, Inf, NaN).
+    subroutine check_reader()
+        character(len=*), parameter :: texts = &
+            "0.1 5e-324 2.2250738585072014e-308 1.7976931348623157e+308 " // &
+            "9007199254740993 1e-12 0.30000000000000004 -0.0 Inf -Inf NaN"
+        integer(c_int64_t), parameter :: bits(8) = [ &
+            int(z'3FB999999999999A', c_int64_t), 1_c_int64_t, &
+            int(z'0010000000000000', c_int64_t), int(z'7FEFFFFFFFFFFFFF', c_int64_t), &
+            int(z'4340000000000000', c_int64_t), int(z'3D719799812DEA11', c_int64_t), &
+            int(z'3FD3333333333334', c_int64_t), 0_c_int64_t]
+        character(len=len(texts)) :: buffer
+        real(c_double) :: values(11)
+        logical :: ok
+        integer :: ios
+        buffer = texts
+        read (buffer, *, iostat=ios) values
+        ok = ios == 0
+        if (ok) then
+            ok = all(transfer(values(1:7), bits) == bits(1:7)) .and. &
+                 transfer(-values(8), 0_c_int64_t) == bits(8) .and. &
+                 sign(1.0_c_double, values(8)) < 0 .and. &
+                 .not. ieee_is_finite(values(9)) .and. values(9) > 0 .and. &
+                 .not. ieee_is_finite(values(10)) .and. values(10) < 0 .and. &
+                 ieee_is_nan(values(11))
+        end if
+        if (.not. ok) call file_fail("(reader)", "list-directed READ does not give back the " &
+                                     // "exact doubles the flat format relies on")
+    end subroutine check_reader
+
+end program corpus_runner

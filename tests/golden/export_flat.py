@@ -1,0 +1,430 @@
+#!/usr/bin/env python3
+"""Export the golden corpus tests/cases/*.json as flat text for the Fortran runner.
+
+    python3 tests/golden/export_flat.py           # write tests/cases/flat/<family>.txt
+    python3 tests/golden/export_flat.py --check   # exit 1 if those files are out of date
+
+Fortran should not parse JSON, so each tests/cases/<family>.json becomes
+tests/cases/flat/<family>.txt, which tests/fortran/corpus_runner.f90 reads. The
+JSON stays the source of truth; the flat files are committed so a Fortran-only
+runner needs no Python, and `--check` (run by the tests) fails when they no
+longer match the JSON. Pure Python 3 (no packages).
+
+Flat format `isect-flat/1`
+--------------------------
+Line-oriented text. Each line is a key and its values separated by single
+spaces; a line starting with `#` is a comment. A file is
+
+    # comment lines
+    format isect-flat/1
+    family <family>
+    cases <number of case blocks that follow>
+    case ... end      (one block per case, in the JSON's order)
+
+A case block, in this order (lines in brackets appear only when they apply):
+
+    case <id> <op>                 op: intersect | contains | point_in_polygon2 |
+                                   winding_number2 | polygon_normal | plane_from_points
+    name <text to the end of the line>
+    [flags <flag> ...]             the case's flags (informational)
+    [malformed <reason>]           the JSON case breaks the schema: a failure
+    [skip <reason>]                a case this runner does not run yet (a mesh shape,
+                                   an op added after this export): skipped
+    [shape <type> <n> <flags> <named> <has_data> <ndata>]
+                                   intersect / contains: isect_shape fields as
+                                   integers (type: ISECT_* value, possibly a raw
+                                   bad-input value); named = 1 when the JSON names
+                                   the type (it has a scalar function); has_data = 0
+                                   when a raw type carries no known keys (data is
+                                   NULL); ndata = number of doubles that follow
+    [data <x1> ... <x_ndata>]      the shape's numbers, in the order of its scalar
+                                   function's arguments. A runner pads them with
+                                   zeros (max(ndata, 4n) + 16 doubles, as the C
+                                   runner does): a raw type may name a type whose
+                                   function reads more numbers than were given
+    [transform <m1> ... <m16>]     row-major object-to-world matrix
+    [ray <ox> <oy> <oz> <dx> <dy> <dz> <tmin> <tmax>]            intersect
+    [opts <flags> <eps>]           intersect; absent: pass NULL (the defaults)
+    [point <k> <x1> ... <xk>]      contains (k = 3), 2D ops (k = 2)
+    [polygon <n> <x1> <y1> ... <xn> <yn>]                        2D ops
+    [rule <r>]                     point_in_polygon2 (integer, passed through)
+    [vertices <n> <x1> <y1> <z1> ... ]       polygon_normal / plane_from_points
+    tol <t> <point> <normal> <uv>
+    status <s>                     expected status (ISECT_OK or ISECT_E_*), integer
+    [count <c> <listed>]           intersect, status ok: hit count; listed = 1 when
+                                   the hit lines follow (else only the count is checked)
+    [hit <t> <px> <py> <pz> <nx> <ny> <nz> <u> <v> <has_uv> <prim> <kind>]
+                                   one per hit, in order; kind an ISECT_* integer;
+                                   has_uv = 0: uv was absent and is not checked
+    [inside <0|1>]                 contains / point_in_polygon2, status ok
+    [winding <w>]                  winding_number2, status ok
+    [normal <x> <y> <z>]           polygon_normal, status ok
+    [plane <a> <b> <c> <d>]        plane_from_points, status ok
+    end
+
+Numbers: every double is written as Python's repr() of the exact double (the
+shortest decimal that reads back as the same double; hex-float strings of the
+JSON are converted exactly), and as `Inf`, `-Inf`, `NaN` for the non-finite
+values, which Fortran's list-directed READ accepts. A correctly rounding
+reader (gfortran's is: it uses strtod) therefore gets every bit back. Integer
+codes (types, statuses, kinds, rules, flags) are the values of the ISECT_*
+macros, read from libisect/include/isect.h.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+FORMAT = "isect-flat/1"
+DEFAULT_TOLERANCE = 1e-12
+
+
+class Malformed(Exception):
+    """The JSON case does not follow tests/cases/README.md: a failure."""
+
+
+class SkipCase(Exception):
+    """A valid case this runner does not run yet (counted as skipped)."""
+
+
+def header_constants(header: Path) -> dict[str, float]:
+    """The numeric #define ISECT_* values of isect.h: integers (`0x1u` and `(-1)`
+    included) and ISECT_EPS_DEFAULT."""
+    values: dict[str, float] = {}
+    eps = re.search(r"^#define\s+ISECT_EPS_DEFAULT\s+(\S+)", header.read_text(), re.M)
+    if eps:
+        values["ISECT_EPS_DEFAULT"] = float(eps.group(1))
+    pattern = re.compile(
+        r"^#define\s+(ISECT_[A-Z0-9_]+)\s+\(?\s*(-?(?:0x[0-9a-fA-F]+|\d+))u?\s*\)?(?:\s|$)")
+    for line in header.read_text().splitlines():
+        m = pattern.match(line)
+        if m:
+            values[m.group(1)] = int(m.group(2), 0)
+    return values
+
+
+class Codes:
+    """The corpus's names as the library's integers."""
+
+    def __init__(self, c: dict[str, float]):
+        self.eps_default = c["ISECT_EPS_DEFAULT"]
+        self.status = {"ok": c["ISECT_OK"], "E_ARG": c["ISECT_E_ARG"],
+                       "E_NONFINITE": c["ISECT_E_NONFINITE"],
+                       "E_DEGENERATE": c["ISECT_E_DEGENERATE"], "E_NOMEM": c["ISECT_E_NOMEM"]}
+        self.kind = {"miss": c["ISECT_MISS"], "enter": c["ISECT_ENTER"],
+                     "exit": c["ISECT_EXIT"], "touch": c["ISECT_TOUCH"],
+                     "invalid": c["ISECT_INVALID"]}
+        self.rule = {"evenodd": c["ISECT_EVEN_ODD"], "nonzero": c["ISECT_NONZERO"]}
+        self.opts_flag = {"cull_back": c["ISECT_CULL_BACK"], "any_hit": c["ISECT_ANY_HIT"]}
+        self.capped = c["ISECT_CAPPED"]
+        # The keys of each named type in the order of its scalar function's
+        # arguments (= the order of isect_shape.data); width 1 is a number,
+        # > 1 a vector, < 0 a list of rows of -width numbers (their count is n).
+        self.layouts = [
+            ("plane", c["ISECT_PLANE"], [("normal", 3), ("d", 1)]),
+            ("sphere", c["ISECT_SPHERE"], [("center", 3), ("radius", 1)]),
+            ("box", c["ISECT_AABB"], [("lo", 3), ("hi", 3)]),
+            ("triangle", c["ISECT_TRIANGLE"], [("a", 3), ("b", 3), ("c", 3)]),
+            ("polygon", c["ISECT_POLYGON"], [("vertices", -3)]),
+            ("convex", c["ISECT_CONVEX"], [("planes", -4)]),
+            ("cylinder", c["ISECT_CYLINDER"], [("p0", 3), ("p1", 3), ("radius", 1)]),
+            ("infinite_cylinder", c["ISECT_CYLINDER_INF"],
+             [("point", 3), ("axis", 3), ("radius", 1)]),
+            ("ellipsoid", c["ISECT_ELLIPSOID"], [("center", 3), ("radii", 3)]),
+            ("quadric", c["ISECT_QUADRIC"], [("coeffs", 10)]),
+        ]
+        self.polygon = c["ISECT_POLYGON"]
+        self.cylinder = c["ISECT_CYLINDER"]
+
+
+# ------------------------------------------------------------- values
+def number(value, where: str) -> float:
+    """A corpus number: JSON number, "inf", "-inf", "nan" or a hex-float string."""
+    if isinstance(value, bool):
+        raise Malformed(f"{where}: a boolean where a number is expected")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str):
+        text = value.strip().lower()
+        if text in ("inf", "+inf", "-inf", "nan"):
+            return float(text)
+        try:
+            return float.fromhex(value)
+        except ValueError:
+            pass
+    raise Malformed(f"{where}: {value!r} is not a number")
+
+
+def integer(value, where: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value != int(value):
+        raise Malformed(f"{where}: {value!r} is not an integer")
+    return int(value)
+
+
+def vector(value, n: int, where: str) -> list[float]:
+    if not isinstance(value, list) or len(value) != n:
+        raise Malformed(f"{where}: expected {n} numbers")
+    return [number(x, f"{where}[{i}]") for i, x in enumerate(value)]
+
+
+def rows(value, width: int, where: str) -> list[list[float]]:
+    """A list of rows of `width` numbers; any number of rows (bad-input cases)."""
+    if not isinstance(value, list):
+        raise Malformed(f"{where}: expected a list of rows")
+    return [vector(row, width, f"{where}[{i}]") for i, row in enumerate(value)]
+
+
+def fmt(x: float) -> str:
+    if math.isnan(x):
+        return "NaN"
+    if math.isinf(x):
+        return "Inf" if x > 0 else "-Inf"
+    return repr(x)
+
+
+def fmts(xs) -> str:
+    return " ".join(fmt(x) for x in xs)
+
+
+def one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+# -------------------------------------------------------------- cases
+def rule_value(obj: dict, key: str, codes: Codes, where: str) -> int:
+    if key not in obj:
+        return codes.rule["evenodd"]
+    value = obj[key]
+    if isinstance(value, str):
+        if value not in codes.rule:
+            raise Malformed(f"{where}.{key}: unknown rule {value!r}")
+        return codes.rule[value]
+    return integer(value, f"{where}.{key}")
+
+
+def capped_value(shape: dict, codes: Codes) -> int:
+    if "capped" not in shape:
+        return codes.capped          # the Python constructor's default
+    value = shape["capped"]
+    if isinstance(value, bool):
+        return codes.capped if value else 0
+    return integer(value, "shape.capped")
+
+
+def shape_lines(shape, codes: Codes) -> list[str]:
+    """`shape` and `data` lines, mirroring tests/c/corpus_shape.c."""
+    if not isinstance(shape, dict) or "type" not in shape:
+        raise Malformed("shape: an object with a type is required")
+    kind = shape["type"]
+    if isinstance(kind, str):
+        matches = [lay for lay in codes.layouts if lay[0] == kind]
+        if not matches:
+            raise SkipCase(f"shape type {kind!r} is not run by this runner")
+        layout, named, type_value = matches[0], 1, matches[0][1]
+    else:
+        type_value, named = integer(kind, "shape.type"), 0
+        # A raw type takes the keys of the first named type whose keys are
+        # all present (bad-input cases), or no data at all.
+        layout = next((lay for lay in codes.layouts
+                       if all(key in shape for key, _ in lay[2])), None)
+    data: list[float] = []
+    n = 0
+    if layout is not None:
+        for key, width in layout[2]:
+            if key not in shape:
+                raise Malformed(f"shape.{key} is missing")
+            if width < 0:
+                table = rows(shape[key], -width, f"shape.{key}")
+                n = len(table)
+                data += [x for row in table for x in row]
+            elif width == 1:
+                data.append(number(shape[key], f"shape.{key}"))
+            else:
+                data += vector(shape[key], width, f"shape.{key}")
+    flags = 0
+    if (named and type_value == codes.polygon) or (not named and "rule" in shape):
+        flags = rule_value(shape, "rule", codes, "shape")
+    elif (named and type_value == codes.cylinder) or (not named and "capped" in shape):
+        flags = capped_value(shape, codes)
+    has_data = 0 if layout is None else 1
+    lines = [f"shape {type_value} {n} {flags} {named} {has_data} {len(data)}"]
+    if data:
+        lines.append("data " + fmts(data))
+    return lines
+
+
+OPS = ("intersect", "contains", "point_in_polygon2", "winding_number2",
+       "polygon_normal", "plane_from_points")
+
+
+def case_body(case: dict, op: str, codes: Codes) -> list[str]:
+    """The lines between `name`/`flags` and `end`."""
+    out: list[str] = []
+    if op in ("intersect", "contains"):
+        out += shape_lines(case.get("shape"), codes)
+        if "transform" in case:
+            out.append("transform " + fmts(vector(case["transform"], 16, "transform")))
+    if op == "intersect":
+        ray = case.get("ray")
+        if not isinstance(ray, dict):
+            raise Malformed("ray: an object is required")
+        values = vector(ray.get("org"), 3, "ray.org") + vector(ray.get("dir"), 3, "ray.dir")
+        values.append(number(ray.get("tmin", 0.0), "ray.tmin"))
+        values.append(number(ray.get("tmax", "inf"), "ray.tmax"))
+        out.append("ray " + fmts(values))
+        if "opts" in case:
+            opts = case["opts"]
+            if not isinstance(opts, dict):
+                raise Malformed("opts: an object is required")
+            flags = 0
+            for i, flag in enumerate(opts.get("flags", [])):
+                if isinstance(flag, str):
+                    if flag not in codes.opts_flag:
+                        raise Malformed(f"opts.flags[{i}]: unknown flag {flag!r}")
+                    flags |= codes.opts_flag[flag]
+                else:
+                    flags |= integer(flag, f"opts.flags[{i}]")
+            eps = number(opts.get("eps", codes.eps_default), "opts.eps")
+            out.append(f"opts {flags} {fmt(eps)}")
+    elif op == "contains":
+        out.append("point 3 " + fmts(vector(case.get("point"), 3, "point")))
+    elif op in ("point_in_polygon2", "winding_number2"):
+        polygon = rows(case.get("polygon"), 2, "polygon")
+        out.append("point 2 " + fmts(vector(case.get("point"), 2, "point")))
+        out.append(f"polygon {len(polygon)} " + fmts(x for row in polygon for x in row))
+        if op == "point_in_polygon2":
+            out.append(f"rule {rule_value(case, 'rule', codes, 'case')}")
+    else:
+        vertices = rows(case.get("vertices"), 3, "vertices")
+        out.append(f"vertices {len(vertices)} " + fmts(x for row in vertices for x in row))
+
+    tol = case.get("tol", {})
+    if not isinstance(tol, dict):
+        raise Malformed("tol: an object is required")
+    out.append("tol " + fmts(number(tol.get(k, DEFAULT_TOLERANCE), f"tol.{k}")
+                             for k in ("t", "point", "normal", "uv")))
+    out += expect_lines(case.get("expect"), op, codes)
+    return out
+
+
+def expect_lines(expect, op: str, codes: Codes) -> list[str]:
+    if not isinstance(expect, dict) or expect.get("status") not in codes.status:
+        raise Malformed("expect.status: missing or unknown")
+    out = [f"status {codes.status[expect['status']]}"]
+    if expect["status"] != "ok":
+        return out                      # for an error nothing else is checked
+    if op == "intersect":
+        count = integer(expect.get("count"), "expect.count")
+        hits = expect.get("hits")
+        out.append(f"count {count} {0 if hits is None else 1}")
+        if hits is not None:
+            if not isinstance(hits, list) or len(hits) != count:
+                raise Malformed("expect.hits: must list `count` hits")
+            for i, hit in enumerate(hits):
+                where = f"expect.hits[{i}]"
+                if not isinstance(hit, dict) or hit.get("kind") not in codes.kind:
+                    raise Malformed(f"{where}: an object with a known kind is required")
+                uv = vector(hit["uv"], 2, f"{where}.uv") if "uv" in hit else [0.0, 0.0]
+                values = ([number(hit.get("t"), f"{where}.t")]
+                          + vector(hit.get("point"), 3, f"{where}.point")
+                          + vector(hit.get("normal"), 3, f"{where}.normal") + uv)
+                out.append(f"hit {fmts(values)} {1 if 'uv' in hit else 0} "
+                           f"{integer(hit.get('prim'), where + '.prim')} "
+                           f"{codes.kind[hit['kind']]}")
+    elif op in ("contains", "point_in_polygon2"):
+        out.append(f"inside {integer(expect.get('inside'), 'expect.inside')}")
+    elif op == "winding_number2":
+        out.append(f"winding {integer(expect.get('winding'), 'expect.winding')}")
+    elif op == "polygon_normal":
+        out.append("normal " + fmts(vector(expect.get("normal"), 3, "expect.normal")))
+    else:
+        out.append("plane " + fmts(vector(expect.get("plane"), 4, "expect.plane")))
+    return out
+
+
+def case_block(case, index: int, codes: Codes) -> list[str]:
+    if not isinstance(case, dict):
+        return [f"case {index} intersect", f"name [{index}]",
+                "malformed the case is not an object", "end"]
+    case_id = case.get("id", index)
+    if isinstance(case_id, bool) or not isinstance(case_id, int):
+        case_id = index
+    op = case.get("op", "intersect")
+    head = [f"case {case_id} {op if op in OPS else 'intersect'}",
+            "name " + (one_line(case.get("name", "")) or f"[{index}]")]
+    flags = case.get("flags", [])
+    if isinstance(flags, list) and flags:
+        head.append("flags " + " ".join(one_line(f).replace(" ", "_") for f in flags))
+    try:
+        if op not in OPS:
+            # A later schema's op (meshes): the C runner knows it, this one not yet.
+            raise SkipCase(f"op {op!r} is not run by this runner")
+        body = case_body(case, op, codes)
+    except Malformed as e:
+        body = [f"malformed {one_line(e)}"]
+    except SkipCase as e:
+        body = [f"skip {one_line(e)}"]
+    return head + body + ["end"]
+
+
+def export(json_path: Path, codes: Codes) -> str:
+    doc = json.loads(json_path.read_text())
+    cases = doc.get("cases", []) if isinstance(doc, dict) else []
+    family = doc.get("family", json_path.stem) if isinstance(doc, dict) else json_path.stem
+    lines = [f"# Generated by tests/golden/export_flat.py from tests/cases/{json_path.name}"
+             " (format: see that script); do not edit.",
+             f"format {FORMAT}", f"family {one_line(family)}", f"cases {len(cases)}"]
+    for i, case in enumerate(cases):
+        lines += case_block(case, i, codes)
+    return "\n".join(lines) + "\n"
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--check", action="store_true",
+                        help="fail if the flat files differ from a fresh export")
+    parser.add_argument("--cases", type=Path, default=ROOT / "tests" / "cases")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="output directory (default: <cases>/flat)")
+    parser.add_argument("--header", type=Path, default=ROOT / "libisect" / "include" / "isect.h")
+    args = parser.parse_args()
+    out_dir = args.out or args.cases / "flat"
+    codes = Codes(header_constants(args.header))
+
+    wanted = {f"{p.stem}.txt": export(p, codes) for p in sorted(args.cases.glob("*.json"))}
+    if not wanted:
+        print(f"no *.json in {args.cases}", file=sys.stderr)
+        return 1
+    if args.check:
+        stale = []
+        for name, text in wanted.items():
+            path = out_dir / name
+            if not path.is_file() or path.read_text() != text:
+                stale.append(name)
+        extra = sorted(p.name for p in out_dir.glob("*.txt") if p.name not in wanted)
+        for name in stale:
+            print(f"FAIL {out_dir / name}: out of date with its JSON")
+        for name in extra:
+            print(f"FAIL {out_dir / name}: no JSON file exports to it")
+        if stale or extra:
+            print("run: python3 tests/golden/export_flat.py")
+            return 1
+        print(f"flat corpus in sync: {len(wanted)} files")
+        return 0
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for name, text in wanted.items():
+        (out_dir / name).write_text(text)
+    for path in out_dir.glob("*.txt"):
+        if path.name not in wanted:
+            path.unlink()
+    print(f"wrote {len(wanted)} files to {out_dir}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,269 @@
+"""Rays, options, hits and cases of the golden reference (shared by all families).
+
+The library's documented output rules live here, evaluated on exact values:
+hits are kept for tmin <= t <= tmax (closed), sorted by t then prim;
+ISECT_CULL_BACK drops EXIT hits of thin surfaces; point = org + t*dir.
+"""
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Sequence
+
+from exact import (NEAR, DesignError, Real, cmp, point_on_ray, q, qv, rel_gap, representable,
+                   to_double)
+
+EPS_DEFAULT = 1e-12
+INF = math.inf
+NAN = math.nan
+
+
+# ----------------------------------------------------------------- the ray
+@dataclass(frozen=True)
+class XRay:
+    """A ray with exact coordinates; tmin/tmax exact or +-inf (a float)."""
+    org: tuple[Fraction, Fraction, Fraction]
+    dir: tuple[Fraction, Fraction, Fraction]
+    tmin: Fraction | float
+    tmax: Fraction | float
+
+    @staticmethod
+    def from_json(r: dict) -> "XRay":
+        def bound(x: float) -> Fraction | float:
+            return x if math.isinf(x) else q(x)
+        return XRay(qv(r["org"]), qv(r["dir"]),
+                    bound(r.get("tmin", 0.0)), bound(r.get("tmax", INF)))
+
+
+@dataclass(frozen=True)
+class Ctx:
+    """Decision context of one solve.
+
+    eps:   the exact eps of the options.
+    exact: the library sees exactly this ray (no transform, or a transform
+           whose inverse and object-space ray are exact in doubles), so an
+           exact tie in the reference is a tie in the library too.  When
+           False, cases must keep every decision away from a tie.
+    """
+    eps: Fraction
+    exact: bool = True
+
+
+@dataclass
+class Hit:
+    """One hit before it is put in world space and rounded."""
+    t: Real
+    normal: Sequence[Real]
+    kind: str                       # "enter" | "exit" | "touch"
+    prim: int = -1
+    uv: tuple[Real, Real] = (Fraction(0), Fraction(0))
+
+
+# --------------------------------------------------------------- filtering
+def _bound_ok(t: Real, bound: Fraction | float, want: int, ctx: Ctx, what: str) -> bool:
+    """t >= bound (want = 1) or t <= bound (want = -1), closed."""
+    if isinstance(bound, float):           # an infinite bound
+        return (bound < 0) if want > 0 else (bound > 0)
+    c = cmp(t, bound)
+    if c == 0:
+        # A hit exactly at tmin/tmax: the library must compute t exactly.
+        if not (isinstance(t, Fraction) and representable(t) and ctx.exact):
+            raise DesignError(f"hit at t = {what} is not exactly computable")
+        return True
+    if rel_gap(t, bound) < NEAR:
+        raise DesignError(f"hit within 1e-12 (relative) of {what}: the library's rounding could decide")
+    return c == want
+
+
+def in_range(t: Real, ray: XRay, ctx: Ctx) -> bool:
+    return _bound_ok(t, ray.tmin, 1, ctx, "tmin") and _bound_ok(t, ray.tmax, -1, ctx, "tmax")
+
+
+def finish(hits: list[Hit], ray: XRay, ctx: Ctx, thin: bool, cull_back: bool) -> list[Hit]:
+    """Range filter, back-face culling and the (t, prim) order of the API."""
+    kept = [h for h in hits if in_range(h.t, ray, ctx)]
+    if cull_back and thin:
+        kept = [h for h in kept if h.kind != "exit"]
+
+    def order(a: Hit, b: Hit) -> int:
+        c = cmp(a.t, b.t) if a.t != b.t else 0
+        return c if c else (a.prim > b.prim) - (a.prim < b.prim)
+    return sorted(kept, key=functools.cmp_to_key(order))
+
+
+def hit_json(h: Hit, ray: XRay) -> dict:
+    """Round an exact hit to doubles; point = org + t*dir (on the surface)."""
+    p = point_on_ray(ray.org, ray.dir, h.t)
+    return {"t": to_double(h.t),
+            "point": [to_double(x) for x in p],
+            "normal": [to_double(x) for x in h.normal],
+            "uv": [to_double(x) for x in h.uv],
+            "prim": h.prim,
+            "kind": h.kind}
+
+
+# ---------------------------------------------------------- case builders
+def ray(org: Sequence[float], d: Sequence[float], tmin: float = 0.0, tmax: float = INF) -> dict:
+    return {"org": [float(x) for x in org], "dir": [float(x) for x in d],
+            "tmin": float(tmin), "tmax": float(tmax)}
+
+
+def opts(eps: float | None = None, flags: Sequence[str] = ()) -> dict:
+    o: dict[str, Any] = {}
+    if eps is not None:
+        o["eps"] = float(eps)
+    if flags:
+        o["flags"] = list(flags)
+    return o
+
+
+def fl(v: Sequence[float]) -> list[float]:
+    return [float(x) for x in v]
+
+
+CASE_KEYS = ("name", "flags", "op", "shape", "transform", "ray", "point", "polygon", "rule",
+             "vertices", "opts", "expect", "tol")
+
+
+@dataclass
+class Group:
+    """A consistency check over several cases (the exactly-once guarantee).
+
+    kind "one":        exactly one case of the group has a hit (and only one).
+    kind "even":       the total number of hits of the group is even.
+    kind "enter-exit": the group has exactly two hits, one enter and one exit.
+    kind "one-inside": exactly one point_in_polygon2 case says inside.
+    """
+    name: str
+    kind: str
+    members: list[dict] = field(default_factory=list)
+
+
+def case(name: str, flags: Sequence[str], group: Group | None = None, **fields: Any) -> dict:
+    """A case dict in canonical key order (expect is filled in by the generator)."""
+    c: dict[str, Any] = {"name": name, "flags": list(flags)}
+    for k, v in fields.items():
+        if k not in CASE_KEYS:
+            raise KeyError(f"unknown case key {k}")
+        if v is not None:
+            c[k] = v
+    if group is not None:
+        group.members.append(c)
+        c["_group"] = group          # private: checked and removed by the generator
+    return c
+
+
+# ------------------------------------------------------------------- notes
+#: every flag a case may carry, with the explanation written into the header
+NOTES: dict[str, str] = {
+    "basic": "An ordinary configuration far from every special case.",
+    "miss": "The ray (or its line) misses the object: count 0.",
+    "behind": "The object lies behind the ray origin (t < tmin) and is not reported; "
+              "with tmin = -inf it is.",
+    "inside": "The ray origin is inside the solid: the entry lies at t < 0.",
+    "on-surface": "The ray origin lies exactly on the surface, so a hit has t = 0 exactly "
+                  "(kept, since tmin = 0 is inclusive).",
+    "tangent": "The ray touches a curved surface exactly (zero discriminant in exact "
+               "arithmetic): one hit of kind touch.",
+    "near-tangent": "The ray passes near tangency; the documented scale-invariant test against "
+                    "eps decides between one touch and two hits (never close to the threshold).",
+    "parallel": "The ray is parallel to a plane or face (|n.d| <= eps|n||d|) or to a cylinder "
+                "axis (|d x a| <= eps|d||a|): a parallel thin surface is not hit; a parallel "
+                "convex face constrains by the side of the origin (on the plane = inside).",
+    "touch-snap": "A touch decided by a large eps while the ray passes at distance r - h from the "
+                  "surface: isect.h lets the point be org + t*dir (expected here) or that point "
+                  "snapped onto the surface (sphere, ellipsoid); they differ by about r - h, so "
+                  "tol.point is loosened to 1e-4 to accept both.",
+    "near-parallel": "The ray is almost parallel; eps decides (never close to the threshold).",
+    "in-plane": "The ray lies in the plane of a thin surface or face.",
+    "vertex": "The ray passes exactly through a vertex. Decided without tolerance by the exact "
+              "symbolic perturbation of isect.h (sheared frame, query point moved by "
+              "(-e^2, -e)); the sheared projection of these inputs is exact in doubles.",
+    "edge": "The ray passes exactly through an edge (interior of the edge); decided by the "
+            "exact perturbation rule, sheared projection exact in doubles.",
+    "horizontal-edge": "In the sheared (or 2D) frame an edge lies on the horizontal line through "
+                       "the query point: it counts for neither side (ray parallel to an edge in "
+                       "the point-in-polygon test).",
+    "watertight": "One case of a group that share an edge or vertex (named in the case name): "
+                  "the reference checks that exactly one of the group reports the crossing, or "
+                  "an even number for a graze.",
+    "frame-swap": "dir[kz] < 0, so the sheared frame swaps kx and ky.",
+    "frame-tie": "Two or three |dir| components are equal: kz is the lowest index.",
+    "graze": "The ray touches a box or polyhedron only at an edge or corner (entry == exit): "
+             "one touch hit, prim the lowest face index involved.",
+    "tie": "Several faces are reached at the same t (the ray crosses an edge or corner): "
+           "the lowest face index is reported.",
+    "concave": "A concave polygon (a notch); the ray goes through the notch or beside it.",
+    "reflex": "The ray passes through a reflex vertex of a concave polygon.",
+    "collinear": "The polygon has three consecutive collinear vertices (a vertex in the middle "
+                 "of a straight edge).",
+    "duplicate-vertex": "The polygon repeats a vertex (a zero-length edge).",
+    "self-intersecting": "A self-intersecting polygon: even-odd and nonzero rules differ where "
+                         "the winding number is 2.",
+    "evenodd": "Polygon rule ISECT_EVEN_ODD (inside where the crossing number is odd).",
+    "nonzero": "Polygon rule ISECT_NONZERO (inside where the winding number is not 0).",
+    "clip": "tmin/tmax remove some hits (the interval [tmin, tmax] is closed).",
+    "clip-exact": "A hit lies exactly at tmin or tmax and is kept (closed interval); t is exact "
+                  "in doubles.",
+    "empty-interval": "tmin > tmax: no hits, not an error.",
+    "negative-t": "tmin is negative (or -inf), so hits behind the origin are reported.",
+    "non-unit-dir": "The direction is not unit length; t is in units of dir (never renormalised).",
+    "far": "Small object far from the origin (e.g. sphere radius 1e-3 at distance ~1e7): needs "
+           "cancellation-free formulas (Haines et al.). For spheres, where the library promises "
+           "full precision, tol.t = 4e-16 relative (about 2 ulp); other shapes use the default.",
+    "loose-normal": "The normal tolerance is loosened to 1e-5 because the point and the centre "
+                    "(~1e7) cancel in p - c: the normal of a radius-1e-3 sphere is only "
+                    "determined to about ulp(1e7)/r ~ 2e-6 by a double-precision point.",
+    "eps": "The case sets a non-default eps in opts.",
+    "cull-back": "opts.flags has cull_back: EXIT hits of thin surfaces (plane, triangle, "
+                 "polygon, open cylinder) are dropped; solids are unaffected.",
+    "cap": "The hit is on a cylinder cap (prim 1 at p0, prim 2 at p1).",
+    "open": "An open cylinder (capped false): the side only, a thin surface with the outward "
+            "radial normal.",
+    "unbounded": "An unbounded convex polyhedron: only an enter or only an exit hit.",
+    "linear": "Quadric linear case (a = 0 along the ray: ray parallel to a cone generator or a "
+              "plane given as a quadric): t = -c/b; a = b = 0 gives no hit.",
+    "degenerate": "Degenerate geometry that is not an error (zero area, collinear, zero radius, "
+                  "zero-length axis, flat box, zero normal, all-zero quadric): status ok, "
+                  "never hit.",
+    "contains": "op contains: closed solid, a point on the boundary is inside (the boundary "
+                "points used evaluate F(p) = 0 exactly in doubles).",
+    "boundary": "The query point lies exactly on the boundary.",
+    "robust": "A naive double-precision orientation test gets this sign wrong; the exact "
+              "predicate must be used.",
+    "transformed": "The shape has an object-to-world transform: the ray goes to object space "
+                   "by the inverse (t unchanged), points by M, normals by the inverse transpose "
+                   "(renormalised).",
+    "rotation": "The transform contains a rotation (entries are the doubles of cos/sin; the "
+                "reference uses those doubles exactly).",
+    "scaling": "The transform scales (uniformly or not).",
+    "shear": "The transform shears.",
+    "mirror": "The transform has negative determinant (mirroring); normals stay outward, kinds "
+              "unchanged.",
+    "translation": "The transform translates.",
+    "exact-transform": "The transform's inverse and the object-space ray are exact in doubles, "
+                       "so exact edge/tangency decisions carry over.",
+    "bad-input": "Invalid input: expect.status is the error; nothing else is checked.",
+    "nonfinite": "A NaN or Inf where a finite number is required: E_NONFINITE.",
+    "singular": "The transform's linear part is singular: |det| <= 2^-40 |row0||row1||row2| "
+                "(rows of the 3x3 linear part): E_DEGENERATE.",
+    "non-affine": "The transform's last row is not exactly 0 0 0 1: E_ARG.",
+    "c-only": "Only expressible through the C API (integer shape type, integer capped): "
+              "other runners skip it and count it as skipped.",
+    "neg-zero": "An input is -0.0, which compares equal to 0 (not negative).",
+    "winding": "op winding_number2 (integer winding number, counter-clockwise +1).",
+    "normal-op": "op polygon_normal or plane_from_points (Newell's method about the centroid).",
+    "tiling": "One of a set of polygons tiling the plane around the query point: exactly one "
+              "of the group contains it.",
+}
+
+
+def check_flags(cases: list[dict]) -> dict[str, str]:
+    """The notes of the flags used in a file (every flag must be documented)."""
+    used = sorted({f for c in cases for f in c["flags"]})
+    missing = [f for f in used if f not in NOTES]
+    if missing:
+        raise KeyError(f"undocumented flags: {missing}")
+    return {f: NOTES[f] for f in used}
