@@ -85,7 +85,7 @@ int polygon_plane(const double *v, const int32_t *idx, int n, double normal[3],
         pre = 0.25;
         extent = relative_extent(v, idx, n, centroid, pre);
     }
-    double newell[3] = { 0.0, 0.0, 0.0 };
+    double newell[3] = { 0.0, 0.0, 0.0 }, magnitude[3] = { 0.0, 0.0, 0.0 };
     if (extent > 0.0) {
         int e = ilogb(extent);
         double scale = ldexp(1.0, e > 1000 ? -1000 : e < -1000 ? 1000 : -e);
@@ -95,14 +95,27 @@ int polygon_plane(const double *v, const int32_t *idx, int n, double normal[3],
             relative_scaled(vertex_at(v, idx, i), centroid, pre, scale, cur);
             /* Newell: twice the vector area, the sum over edges i -> j of
              * (y_i - y_j)(z_i + z_j), (z_i - z_j)(x_i + x_j), (x_i - x_j)(y_i + y_j). */
-            newell[0] += (prev[1] - cur[1]) * (prev[2] + cur[2]);
-            newell[1] += (prev[2] - cur[2]) * (prev[0] + cur[0]);
-            newell[2] += (prev[0] - cur[0]) * (prev[1] + cur[1]);
+            double term[3] = { (prev[1] - cur[1]) * (prev[2] + cur[2]),
+                               (prev[2] - cur[2]) * (prev[0] + cur[0]),
+                               (prev[0] - cur[0]) * (prev[1] + cur[1]) };
+            for (int k = 0; k < 3; k++) {
+                newell[k] += term[k];
+                magnitude[k] += fabs(term[k]);
+            }
             v3_copy(prev, cur);
         }
     }
+    /* A sliver whose every Newell component is within the rounding error
+     * of its own sum has a normal with no correct digit (the error of each
+     * term is at most ~3u of it after the centroid-relative rounding, the
+     * recursive sum adds (n-1)u of the sum of magnitudes): its plane, and so
+     * any hit on it, would be noise. It counts as zero area. */
+    const double noise = (n + 4) * 0x1p-52;
+    int has_digits = 0;
+    for (int k = 0; k < 3; k++)
+        has_digits |= fabs(newell[k]) > noise * magnitude[k];
     double len = v3_normalize(normal, newell);
-    if (len > 0.0 && isfinite(len) && !vertices_collinear(v, idx, n))
+    if (has_digits && len > 0.0 && isfinite(len) && !vertices_collinear(v, idx, n))
         return 1;
     v3_set(normal, 0.0, 0.0, 0.0);
     v3_set(centroid, 0.0, 0.0, 0.0);

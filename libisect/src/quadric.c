@@ -59,6 +59,33 @@ static void scaled_coefficients(const double *q, int e_pos, double out[10])
         out[i] = q[i] != 0.0 ? ldexp(q[i], degree[i] * e_pos - top) : 0.0;
 }
 
+/*
+ * The power of two to measure positions in. Any choice is exact, but the
+ * scaled coefficients span 2^(degree * e_pos): measured in units far below
+ * the quadric's own length scale (an origin at 1e-200 near a unit sphere)
+ * the degree-2 terms would underflow against J. So the unit is the larger
+ * of the origin's magnitude and the scale where the highest- and
+ * lowest-degree terms balance, |q_high| L^dh ~ |q_low| L^dl.
+ */
+static int position_exponent(const double *q, const double org[3])
+{
+    static const int degree[10] = { 2, 2, 2, 2, 2, 2, 1, 1, 1, 0 };
+    int e_deg[3] = { INT_MIN, INT_MIN, INT_MIN };
+    for (int i = 0; i < 10; i++)
+        if (q[i] != 0.0 && pow2_exponent(q[i]) > e_deg[degree[i]])
+            e_deg[degree[i]] = pow2_exponent(q[i]);
+    int hi = 2, lo = 0;
+    while (hi > 0 && e_deg[hi] == INT_MIN)
+        hi--;
+    while (lo < hi && e_deg[lo] == INT_MIN)
+        lo++;
+    int e_org = max_abs3(org) > 0.0 ? pow2_exponent(max_abs3(org)) : INT_MIN;
+    if (lo == hi)
+        return e_org == INT_MIN ? 0 : e_org;
+    int e_shape = (e_deg[lo] - e_deg[hi]) / (hi - lo);
+    return e_org > e_shape ? e_org : e_shape;
+}
+
 /* The monomials of the quadratic part: coefficient index and variables. */
 static const int quad_term[6][3] = {
     { QA, 0, 0 }, { QB, 1, 1 }, { QC, 2, 2 }, { QD, 0, 1 }, { QE, 0, 2 }, { QF, 1, 2 }
@@ -122,7 +149,7 @@ int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
 {
     if (all_zero(s->data))
         return 0;
-    int e_pos = pow2_exponent(max_abs3(ray->org));
+    int e_pos = position_exponent(s->data, ray->org);
     int e_dir = pow2_exponent(max_abs3(ray->dir));
     double q[10], org[3], dir[3];
     scaled_coefficients(s->data, e_pos, q);
@@ -173,7 +200,7 @@ int quadric_contains(const isect_shape *s, const double p[3])
 {
     if (all_zero(s->data))
         return 0;
-    int e_pos = pow2_exponent(max_abs3(p));
+    int e_pos = position_exponent(s->data, p);
     double q[10], x[3];
     scaled_coefficients(s->data, e_pos, q);
     scale3(x, p, e_pos);
