@@ -71,10 +71,10 @@ $(SAN_STLIB): $(SAN_OBJS)
 # ---------------------------------------------------------------- tests
 # Unit tests link the shared library (so they see exactly the exported ABI);
 # their sanitized twins link the sanitized static library.
-$(B)/tests/%: tests/c/%.c tests/c/check.h $(B)/$(SONAME) $(B)/libisect.so
+$(B)/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h $(B)/$(SONAME) $(B)/libisect.so
 	@mkdir -p $(@D)
 	$(CC) $(TESTCFLAGS) $< -o $@ -L$(B) -lisect -Wl,-rpath,'$$ORIGIN/..' -lm
-$(B)/san/tests/%: tests/c/%.c tests/c/check.h $(SAN_STLIB)
+$(B)/san/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h $(SAN_STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(TESTCFLAGS) $(SANITIZE) $< -o $@ $(SAN_STLIB) -lm
 
@@ -119,9 +119,9 @@ $(B)/bench/%: bench/%.c $(STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
 # The mesh benchmark compares with Embree 3 (Debian libembree-dev).
-$(B)/bench/bench_mesh: bench/bench_mesh.c $(STLIB)
+$(B)/bench/bench_mesh: bench/bench_mesh.c tests/c/mesh_fixtures.h $(STLIB)
 	@mkdir -p $(@D)
-	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lembree3 -lm
+	$(CC) $(WARN) -O2 -Ilibisect/include -Itests/c $< -o $@ $(STLIB) -lembree3 -lm
 bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
 	$(B)/bench/bench_batch
 	$(B)/bench/bench_mesh

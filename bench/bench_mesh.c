@@ -26,6 +26,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "isect.h"
+#include "mesh_fixtures.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -112,95 +113,6 @@ static void rng_in_ball(uint64_t *s, double r, double v[3])
     }
 }
 
-/* ------------------------------------------------------------ icosphere */
-
-typedef struct tri_mesh {
-    double  *v;
-    int64_t  nv;
-    int32_t *f;
-    int64_t  nf;
-} tri_mesh;
-
-static int32_t midpoint(tri_mesh *m, int64_t *keys, int32_t *vals, int64_t cap, int32_t a,
-                        int32_t b)
-{
-    if (a > b) {
-        int32_t t = a;
-        a = b;
-        b = t;
-    }
-    int64_t key = (int64_t)a * 0x80000000LL + b;
-    uint64_t h = ((uint64_t)key * 0x9E3779B97F4A7C15ULL) >> 17;
-    for (;; h++) {
-        h &= (uint64_t)(cap - 1);
-        if (keys[h] == key)
-            return vals[h];
-        if (keys[h] < 0) {
-            double *p = m->v + 3 * m->nv, len = 0.0;
-            for (int k = 0; k < 3; k++) {
-                p[k] = m->v[3 * a + k] + m->v[3 * b + k];
-                len += p[k] * p[k];
-            }
-            len = sqrt(len);
-            for (int k = 0; k < 3; k++)
-                p[k] /= len;
-            keys[h] = key;
-            vals[h] = (int32_t)m->nv++;
-            return vals[h];
-        }
-    }
-}
-
-static tri_mesh icosphere(int levels)
-{
-    const double g = (1.0 + sqrt(5.0)) / 2.0;
-    static const int32_t base[20][3] = {
-        { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 }, { 0, 10, 11 },
-        { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
-        { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 },
-        { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
-    const double corner[12][3] = {
-        { -1, g, 0 }, { 1, g, 0 }, { -1, -g, 0 }, { 1, -g, 0 }, { 0, -1, g }, { 0, 1, g },
-        { 0, -1, -g }, { 0, 1, -g }, { g, 0, -1 }, { g, 0, 1 }, { -g, 0, -1 }, { -g, 0, 1 } };
-    int64_t nf = 20;
-    for (int l = 0; l < levels; l++)
-        nf *= 4;
-    tri_mesh m;
-    m.v = xmalloc((size_t)(3 * (nf / 2 + 2)) * sizeof *m.v);
-    m.f = xmalloc((size_t)(3 * nf) * sizeof *m.f);
-    m.nv = 12;
-    m.nf = 20;
-    double len = sqrt(1.0 + g * g);
-    for (int i = 0; i < 12; i++)
-        for (int k = 0; k < 3; k++)
-            m.v[3 * i + k] = corner[i][k] / len;
-    memcpy(m.f, base, sizeof base);
-    int32_t *next = xmalloc((size_t)(3 * nf) * sizeof *next);
-    int64_t cap = 1;
-    while (cap < 2 * nf)
-        cap *= 2;
-    int64_t *keys = xmalloc((size_t)cap * sizeof *keys);
-    int32_t *vals = xmalloc((size_t)cap * sizeof *vals);
-    for (int l = 0; l < levels; l++) {
-        for (int64_t i = 0; i < cap; i++)
-            keys[i] = -1;
-        for (int64_t i = 0; i < m.nf; i++) {
-            int32_t a = m.f[3 * i], b = m.f[3 * i + 1], c = m.f[3 * i + 2];
-            int32_t ab = midpoint(&m, keys, vals, cap, a, b);
-            int32_t bc = midpoint(&m, keys, vals, cap, b, c);
-            int32_t ca = midpoint(&m, keys, vals, cap, c, a);
-            int32_t q[12] = { a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca };
-            memcpy(next + 12 * i, q, sizeof q);
-        }
-        m.nf *= 4;
-        memcpy(m.f, next, (size_t)(3 * m.nf) * sizeof *m.f);
-    }
-    free(next);
-    free(keys);
-    free(vals);
-    return m;
-}
-
 /* ------------------------------------------------------------- ray sets */
 
 enum { SET_OUTSIDE, SET_INSIDE, SET_CAMERA, SETS };
@@ -267,7 +179,7 @@ static bool embree_monitor(void *user, ssize_t bytes, bool post)
     return true;
 }
 
-static RTCScene embree_build(RTCDevice device, const tri_mesh *m)
+static RTCScene embree_build(RTCDevice device, const fx_mesh *m)
 {
     RTCScene scene = rtcNewScene(device);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -278,7 +190,7 @@ static RTCScene embree_build(RTCDevice device, const tri_mesh *m)
     unsigned *ib = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                            3 * sizeof(unsigned), (size_t)m->nf);
     for (int64_t i = 0; i < 3 * m->nf; i++)
-        ib[i] = (unsigned)m->f[i];
+        ib[i] = (unsigned)m->idx[i];
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
@@ -327,7 +239,8 @@ typedef struct row {
 
 static void bench_mesh(int level, int64_t nrays, int runs, RTCDevice device, row *out)
 {
-    tri_mesh m = icosphere(level);
+    const double origin[3] = { 0, 0, 0 };
+    fx_mesh m = fx_icosphere(level, origin, 1.0);
     out->triangles = m.nf;
     double *times = xmalloc((size_t)runs * sizeof *times);
 
@@ -337,7 +250,7 @@ static void bench_mesh(int level, int64_t nrays, int runs, RTCDevice device, row
         if (mesh != NULL)
             isect_mesh_destroy(mesh);
         double t0 = now_seconds();
-        int status = isect_mesh_create(m.v, m.nv, m.f, NULL, m.nf, &mesh);
+        int status = isect_mesh_create(m.v, m.nv, m.idx, NULL, m.nf, &mesh);
         times[r] = now_seconds() - t0;
         if (status != ISECT_OK) {
             fprintf(stderr, "isect_mesh_create: %s\n", isect_strerror(status));
@@ -397,8 +310,7 @@ static void bench_mesh(int level, int64_t nrays, int runs, RTCDevice device, row
     free(times);
     rtcReleaseScene(scene);
     isect_mesh_destroy(mesh);
-    free(m.v);
-    free(m.f);
+    fx_free(&m);
 }
 
 int main(int argc, char **argv)
