@@ -132,7 +132,8 @@ extern "C" {
 #define ISECT_CULL_BACK 0x1u /* drop EXIT hits of thin surfaces (plane, triangle,
                                 polygon, open cylinder) */
 #define ISECT_ANY_HIT   0x2u /* batch and mesh: stop at the first hit found
-                                (occlusion queries); for analytic shapes the
+                                (occlusion queries; isect_intersect then
+                                reports 0 or 1 hit); for analytic shapes the
                                 result equals the closest hit */
 
 #define ISECT_EPS_DEFAULT 1e-12
@@ -258,11 +259,14 @@ ISECT_API int isect_ray_plane(const isect_ray *ray, const double n[3], double d,
                               const isect_opts *opts, isect_hit *hits, int cap);
 
 /* Sphere |x - c| = r, r >= 0 (r < 0: ISECT_E_ARG; r = 0: degenerate).
- * Roots are computed without cancellation (Haines et al. 2019): the squared
- * distance h^2 from c to the line is formed from the perpendicular vector,
- * the discriminant as r^2 - h^2 = (r - h)(r + h), and the near root from the
- * midpoint t_m = (c - org).dir/|dir|^2 and the half chord. TOUCH when
- * |r^2 - h^2| <= eps*r^2; then one hit at t_m. prim -1. */
+ * Roots without cancellation (after Haines et al., Ray Tracing Gems 2019):
+ * with f = org - c and d = dir, the midpoint t_m = -(f.d)/|d|^2 and the
+ * discriminant r^2|d|^2 - |f x d|^2 (= |d|^2 (r^2 - h^2), h the distance
+ * from c to the line) are formed in twice the working precision; the root
+ * farther from 0 is t_m + sign(t_m) w (w the half chord), the nearer one
+ * (|f|^2 - r^2)/|d|^2 divided by it when cancellation would threaten.
+ * TOUCH when |r^2 - h^2| <= eps*r^2: one hit at t_m. Points are snapped to
+ * c + r*normal when that is more accurate than org + t*dir. prim -1. */
 ISECT_API int isect_ray_sphere(const isect_ray *ray, const double c[3], double r,
                                const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -271,8 +275,10 @@ ISECT_API int isect_ray_sphere(const isect_ray *ray, const double c[3], double r
  * inside it iff lo <= org <= hi on that axis (no 0*inf is ever formed). Entry
  * and exit face indices in prim (0..5 = -x,+x,-y,+y,-z,+z; ties between
  * faces at an edge or corner go to the lowest index). Entry == exit (a ray
- * grazing an edge or corner): one TOUCH hit. A ray lying in a face plane
- * inside the face is inside the closed box. */
+ * grazing an edge or corner): one TOUCH hit with the lower of the entry and
+ * exit face indices and that face's normal. A ray lying in a face plane
+ * inside the face is inside the closed box. Hit points are snapped onto the
+ * face plane and clamped into [lo, hi]. t = 0 is reported as +0.0. */
 ISECT_API int isect_ray_aabb(const isect_ray *ray, const double lo[3], const double hi[3],
                              const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -289,7 +295,10 @@ ISECT_API int isect_ray_triangle(const isect_ray *ray, const double a[3], const 
  * Plane: Newell's normal through the vertex centroid; normal = unit Newell
  * normal (right-hand rule over the vertex order); prim -1. Inside test:
  * winding number of the origin of the sheared frame, exact, with the
- * tie-breaking rule above. Collinear (zero Newell normal): degenerate. */
+ * tie-breaking rule above. Degenerate (never hit): all vertices exactly
+ * collinear (tested exactly), or a Newell normal with no correct digit (every
+ * component within the rounding error of its own sum: a sliver whose plane
+ * double precision cannot tell). */
 ISECT_API int isect_ray_polygon(const isect_ray *ray, const double *v, int n, int rule,
                                 const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -297,8 +306,10 @@ ISECT_API int isect_ray_polygon(const isect_ray *ray, const double *v, int n, in
  * given as planes[m][4] with outward normals (a, b, c). enterMax/exitMin over
  * the planes; prim = plane index (ties: lowest index). A parallel plane
  * (epsilon policy) constrains by the side of the origin: a*ox+b*oy+c*oz+d > 0
- * means no hit at all. enterMax == exitMin: one TOUCH. An unbounded
- * polyhedron may have only an ENTER or only an EXIT hit. */
+ * means no hit at all. enterMax == exitMin: one TOUCH with the lower of the
+ * two plane indices. An unbounded polyhedron may have only an ENTER or only
+ * an EXIT hit. A zero-normal plane acts through the parallel rule (d > 0:
+ * empty). */
 ISECT_API int isect_ray_convex(const isect_ray *ray, const double *planes, int m,
                                const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -307,8 +318,12 @@ ISECT_API int isect_ray_convex(const isect_ray *ray, const double *planes, int m
  * for a convex solid); capped == 0: the open side only, a thin surface with
  * the outward radial normal. Side tangency: TOUCH when |r^2 - h^2| <= eps*r^2,
  * h the distance between the ray's line and the axis. A ray parallel to the
- * axis (|d x a| <= eps|d||a|) does not hit the side. r = 0 or p0 == p1:
- * degenerate. capped not 0/1: ISECT_E_ARG. */
+ * axis (|d x a| <= eps|d||a|) does not hit the side. Caps follow the
+ * convex-face rule (parallel when |d.a| <= eps|d||a|: the origin's side
+ * decides, on the cap plane = inside). Entry/exit ties go to the lowest prim,
+ * so a ray through the rim is reported on the side; entry == exit is one
+ * TOUCH with the entry's prim and normal. r = 0 or p0 == p1: degenerate.
+ * capped not 0/1: ISECT_E_ARG. */
 ISECT_API int isect_ray_cylinder(const isect_ray *ray, const double p0[3], const double p1[3],
                                  double r, int capped, const isect_opts *opts,
                                  isect_hit *hits, int cap);
@@ -334,7 +349,9 @@ ISECT_API int isect_ray_ellipsoid(const isect_ray *ray, const double c[3], const
  * quadric): |a| <= eps * S * |d|^2 with S = max(|A|..|F|) (or S = 0) gives
  * t = -c/b, and a = b = 0 gives no hit. Discriminant b^2 - 4ac with an
  * error-free FMA evaluation; TOUCH when |b^2 - 4ac| <= eps*(b^2 + 4|ac|).
- * Normal: unit(grad Q). prim -1. All coefficients zero: degenerate. */
+ * a, b, c are formed as compensated sums. Normal: unit(grad Q); where
+ * grad Q = 0 (a cone's apex) -unit(dir) for ENTER/TOUCH, +unit(dir) for EXIT.
+ * prim -1. All coefficients zero: degenerate. */
 ISECT_API int isect_ray_quadric(const isect_ray *ray, const double q[10],
                                 const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -348,7 +365,7 @@ ISECT_API int isect_ray_quadric(const isect_ray *ray, const double q[10],
 ISECT_API int isect_polygon_normal(const double *v, int n, double normal[3]);
 
 /* Plane through the points v[n][3], n >= 3: plane = (a, b, c, d) with (a, b, c)
- * the unit Newell normal and d = -normal.centroid (the least-squares plane for
+ * the unit Newell normal and d = -normal.centroid (the area-weighted plane of
  * nearly planar input). ISECT_E_DEGENERATE for collinear points (plane = 0). */
 ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4]);
 
@@ -382,7 +399,14 @@ ISECT_API int64_t isect_winding_number2_batch(const double *poly, int n, const d
  * The input is copied. ISECT_E_ARG for NULL, nv or nf < 0, an index outside
  * [0, nv), or bad offsets; ISECT_E_NONFINITE for NaN/Inf vertices;
  * ISECT_E_NOMEM. Degenerate faces are kept (never hit) and reported by
- * isect_mesh_check. On error *out is NULL. */
+ * isect_mesh_check. On error *out is NULL. nv and nf must be <= INT32_MAX.
+ * A 3-vertex face is a triangle (barycentric uv) also when given through
+ * offsets; longer faces are filled by the even-odd rule. Degenerate faces
+ * are counted by the report and left out of the BVH. Exactly-once holds for
+ * mesh hits as for single faces (see "Tie-breaking"); the near-parallel eps
+ * test also applies to each face, so with eps > 0 a face within eps of
+ * parallel to the ray is skipped even when it is the one claiming a shared
+ * edge — pass eps = 0 for the unconditional guarantee. */
 ISECT_API int isect_mesh_create(const double *verts, int64_t nv, const int32_t *idx,
                                 const int64_t *offsets, int64_t nf, isect_mesh **out);
 
@@ -443,9 +467,11 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
 
 /* Point containment for solids: sphere, aabb, convex, capped cylinder,
  * infinite cylinder, ellipsoid, quadric, and closed meshes (exact crossing
- * parity; a mesh with boundary edges is ISECT_E_ARG). Analytic solids
- * are closed sets: a point with F(p) <= 0 evaluated in double precision is
- * inside. Degenerate solids contain nothing. 1 inside, 0 outside;
+ * parity along +x with the tie-breaking rule and an exact orientation test
+ * at the point; a mesh with boundary edges is ISECT_E_ARG). Solids are
+ * closed sets: a point with F(p) <= 0, evaluated at least to double-precision
+ * accuracy (compensated where F is a polynomial), is inside; so is a point on
+ * a mesh face, edge or vertex. Degenerate solids contain nothing. 1 inside, 0 outside;
  * ISECT_E_ARG for a thin surface (plane, triangle, polygon, open cylinder);
  * ISECT_E_NONFINITE for a non-finite point. */
 ISECT_API int isect_contains(const isect_shape *shape, const double p[3]);

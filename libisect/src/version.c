@@ -37,7 +37,8 @@ ISECT_API const char *isect_strerror(int status)
     case ISECT_E_ARG:        return "invalid argument (NULL pointer, bad count, negative radius, "
                                     "bad eps, unknown shape type, rule or flag)";
     case ISECT_E_NONFINITE:  return "NaN or infinity where a finite number is required";
-    case ISECT_E_DEGENERATE: return "degenerate input (zero ray direction or singular transform)";
+    case ISECT_E_DEGENERATE: return "degenerate input (zero ray direction, singular transform, or a "
+                                    "zero-area polygon asked for its normal)";
     case ISECT_E_NOMEM:      return "out of memory";
     default:                 return "unknown status";
     }
