@@ -2,8 +2,8 @@
 ! Fortran 2008 through ISO_C_BINDING.
 !
 ! What is here
-!   * bind(C) derived types isect_ray, isect_hit, isect_opts, isect_xform and
-!     isect_shape with exactly the C layouts (tests/fortran/test_layout.f90
+!   * bind(C) derived types isect_ray, isect_hit, isect_opts, isect_xform,
+!     isect_shape and isect_mesh_report with exactly the C layouts (tests/fortran/test_layout.f90
 !     checks every size and offset against the C compiler).
 !   * Every constant of isect.h as an integer(c_int) parameter (and
 !     ISECT_EPS_DEFAULT as real(c_double)). Fortran names are not case
@@ -25,8 +25,8 @@
 !         nhits = isect_intersect(shape, ray, hits, opts=my_opts)
 !     next to the C form
 !         nhits = isect_ray_sphere(ray, centre, radius, c_null_ptr, hits, size(hits))
-!   * Helpers: isect_make_ray, isect_make_shape, isect_error_message,
-!     isect_version_text.
+!   * Helpers: isect_make_ray, isect_make_shape, isect_make_mesh_shape,
+!     isect_error_message, isect_version_text.
 !
 ! Memory: isect_shape holds C pointers (data, xform). isect_make_shape takes
 ! them from its arguments, which must therefore be contiguous variables with
@@ -36,11 +36,11 @@
 ! Aliasing: C allows isect_xform_ray(x, r, r); Fortran forbids passing one
 ! variable to two arguments when one of them is changed, so use a copy.
 !
-! Not here yet: meshes. isect.h declares isect_mesh_report and
-! isect_mesh_create / _destroy / _check / _bytes, but the module does not
-! bind them yet (they are the mesh work's); their type and interfaces go in
-! the sections marked "Meshes" below. Until then a Fortran program cannot
-! build an ISECT_MESH shape.
+! Meshes: a mesh is an opaque C object behind a type(c_ptr) handle.
+! isect_mesh_create makes it (copying the input; vertex indices are 0-based
+! as in C), isect_make_mesh_shape wraps the handle in an ISECT_MESH shape,
+! and isect_mesh_destroy frees it; Fortran does not free it for you, and a
+! shape must not be used after its mesh is destroyed.
 module isect
     use, intrinsic :: iso_c_binding, only: c_int, c_int8_t, c_int32_t, c_int64_t, &
         c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_loc, c_f_pointer, c_associated
@@ -151,8 +151,25 @@ module isect
         type(c_ptr) :: xform = c_null_ptr        ! 32  const isect_xform *
     end type isect_shape
 
-    ! Meshes: the bind(C) type isect_mesh_report (128 bytes) goes here, with
-    ! its size and offsets added to test_layout.
+    ! What isect_mesh_check finds. 128 bytes. Edges are undirected vertex
+    ! pairs of face boundaries; closed and oriented are 0 or 1.
+    type, bind(C), public :: isect_mesh_report
+        integer(c_int64_t) :: vertices = 0               ! 0   referenced by a face
+        integer(c_int64_t) :: edges = 0                  ! 8
+        integer(c_int64_t) :: faces = 0                  ! 16
+        integer(c_int64_t) :: boundary_edges = 0         ! 24  used by one face
+        integer(c_int64_t) :: nonmanifold_edges = 0      ! 32  used by three or more
+        integer(c_int64_t) :: misoriented_edges = 0      ! 40  used twice the same way
+        integer(c_int64_t) :: degenerate_faces = 0       ! 48  zero area (never hit)
+        integer(c_int64_t) :: components = 0             ! 56  through shared edges
+        integer(c_int64_t) :: euler_characteristic = 0   ! 64  V - E + F
+        integer(c_int64_t) :: genus = 0                  ! 72  -1 unless closed, oriented
+        integer(c_int32_t) :: closed = 0                 ! 80  no boundary, non-manifold
+        integer(c_int32_t) :: oriented = 0               ! 84  no misoriented edges
+        real(c_double) :: volume = 0.0_c_double          ! 88  signed; > 0 outward
+        real(c_double) :: area = 0.0_c_double            ! 96
+        integer(c_int64_t) :: reserved(3) = 0            ! 104
+    end type isect_mesh_report
 
     ! ------------------------------------------------------ C functions
     ! The generic names below each hold the C function itself and, where it
@@ -168,9 +185,10 @@ module isect
     public :: isect_xform_init, isect_xform_ray, isect_xform_hits
     public :: isect_intersect, isect_intersect_batch, isect_intersect_all_batch
     public :: isect_contains, isect_contains_batch
-    ! Meshes: isect_mesh_create, _destroy, _check, _bytes go in this list.
+    public :: isect_mesh_create, isect_mesh_destroy, isect_mesh_check, isect_mesh_bytes
 
-    public :: isect_make_ray, isect_make_shape, isect_error_message, isect_version_text
+    public :: isect_make_ray, isect_make_shape, isect_make_mesh_shape
+    public :: isect_error_message, isect_version_text
 
     ! ------------------------------------------------- version, errors
     interface
@@ -558,10 +576,57 @@ module isect
         module procedure fortran_contains_batch
     end interface isect_contains_batch
 
-    ! Meshes: the interfaces of isect_mesh_create (verts(3, nv), idx(*) 0-based,
-    ! offsets(*) or c_null_ptr, a type(c_ptr) handle out), isect_mesh_destroy,
-    ! isect_mesh_check and isect_mesh_bytes go here, with Fortran forms that
-    ! take vertices(3, nv) and faces(3, nf) arrays.
+    ! ------------------------------------------------------------- meshes
+
+    ! verts(3, nv): column i is vertex i-1 (indices are 0-based, as in C).
+    ! offsets = c_null_ptr: triangles, idx(3*nf). Otherwise offsets points at
+    ! nf+1 integer(c_int64_t) 0-based offsets: face f (0-based) is
+    ! idx(offsets(f+1)+1 : offsets(f+2)) in Fortran terms. mesh is the new
+    ! handle (c_null_ptr on error). The Fortran form
+    !     status = isect_mesh_create(verts, idx, mesh [, offsets])
+    ! takes nv = size(verts, 2), nf = size(idx)/3 or size(offsets)-1, and
+    ! also returns ISECT_E_ARG when the arrays do not fit each other (verts
+    ! not 3 rows, size(idx) not a multiple of 3 for triangles, an offset
+    ! beyond size(idx), an empty offsets array).
+    interface isect_mesh_create
+        function isect_mesh_create(verts, nv, idx, offsets, nf, mesh) &
+                bind(C, name="isect_mesh_create") result(status)
+            import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+            real(c_double), intent(in) :: verts(3, *)
+            integer(c_int64_t), value :: nv
+            integer(c_int32_t), intent(in) :: idx(*)
+            type(c_ptr), value :: offsets
+            integer(c_int64_t), value :: nf
+            type(c_ptr), intent(out) :: mesh
+            integer(c_int) :: status
+        end function isect_mesh_create
+        module procedure fortran_mesh_create
+    end interface isect_mesh_create
+
+    interface
+        ! Free a mesh; c_null_ptr is a no-op. The handle is left dangling:
+        ! set it to c_null_ptr yourself.
+        subroutine isect_mesh_destroy(mesh) bind(C, name="isect_mesh_destroy")
+            import :: c_ptr
+            type(c_ptr), value :: mesh
+        end subroutine isect_mesh_destroy
+
+        ! Topology and measures of the mesh.
+        function isect_mesh_check(mesh, report) bind(C, name="isect_mesh_check") &
+                result(status)
+            import :: c_int, c_ptr, isect_mesh_report
+            type(c_ptr), value :: mesh
+            type(isect_mesh_report), intent(out) :: report
+            integer(c_int) :: status
+        end function isect_mesh_check
+
+        ! Bytes the mesh occupies (its copy of the input and the BVH).
+        function isect_mesh_bytes(mesh) bind(C, name="isect_mesh_bytes") result(bytes)
+            import :: c_int64_t, c_ptr
+            type(c_ptr), value :: mesh
+            integer(c_int64_t) :: bytes
+        end function isect_mesh_bytes
+    end interface
 
     ! isect_make_shape(type, data [, n] [, flags] [, xform]) from a rank-1 or
     ! rank-2 target array.
@@ -664,6 +729,19 @@ contains
         if (present(flags)) shape%flags = flags
         if (present(xform)) shape%xform = c_loc(xform)
     end function make_shape_from_columns
+
+    ! A descriptor of the mesh behind a handle from isect_mesh_create (type
+    ! ISECT_MESH, data c_null_ptr, n and flags 0) and, if given, xform. The
+    ! mesh must not be destroyed while the shape is in use.
+    function isect_make_mesh_shape(mesh, xform) result(shape)
+        type(c_ptr), intent(in) :: mesh
+        type(isect_xform), intent(in), target, optional :: xform
+        type(isect_shape) :: shape
+        shape%type = ISECT_MESH
+        shape%data = c_null_ptr
+        shape%mesh = mesh
+        if (present(xform)) shape%xform = c_loc(xform)
+    end function isect_make_mesh_shape
 
     ! ---------------------------------- Fortran forms of the primitives
     ! cap = size(hits); opts optional. A zero-size hits array counts only.
@@ -887,6 +965,35 @@ contains
         integer(c_int) :: status
         status = isect_xform_hits(x, hits, int_capacity(size(hits)))
     end function fortran_xform_hits
+
+    ! -------------------------------------- Fortran form of the meshes
+
+    ! verts(3, nv), idx(:) 0-based; offsets(nf+1) 0-based, absent for
+    ! triangles (nf = size(idx)/3).
+    function fortran_mesh_create(verts, idx, mesh, offsets) result(status)
+        real(c_double), intent(in) :: verts(:, :)
+        integer(c_int32_t), intent(in) :: idx(:)
+        type(c_ptr), intent(out) :: mesh
+        integer(c_int64_t), intent(in), target, contiguous, optional :: offsets(:)
+        integer(c_int) :: status
+        integer(c_int64_t) :: nv
+        mesh = c_null_ptr
+        status = ISECT_E_ARG
+        if (size(verts, 1) /= 3) return
+        nv = int(size(verts, 2), c_int64_t)
+        if (present(offsets)) then
+            ! The C library checks the offsets before it reads idx, and they
+            ! must increase, so the last one bounds every face.
+            if (size(offsets) < 1) return
+            if (offsets(size(offsets)) > int(size(idx), c_int64_t)) return
+            status = isect_mesh_create(verts, nv, idx, c_loc(offsets), &
+                                       int(size(offsets) - 1, c_int64_t), mesh)
+        else
+            if (mod(size(idx), 3) /= 0) return
+            status = isect_mesh_create(verts, nv, idx, c_null_ptr, &
+                                       int(size(idx) / 3, c_int64_t), mesh)
+        end if
+    end function fortran_mesh_create
 
     ! -------------------------------------- Fortran forms of the shapes
 

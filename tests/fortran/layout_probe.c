@@ -45,6 +45,22 @@ static const named_value layout[] = {
     OFFSET_OF(isect_shape, data),
     OFFSET_OF(isect_shape, mesh),
     OFFSET_OF(isect_shape, xform),
+    SIZE_OF(isect_mesh_report),
+    OFFSET_OF(isect_mesh_report, vertices),
+    OFFSET_OF(isect_mesh_report, edges),
+    OFFSET_OF(isect_mesh_report, faces),
+    OFFSET_OF(isect_mesh_report, boundary_edges),
+    OFFSET_OF(isect_mesh_report, nonmanifold_edges),
+    OFFSET_OF(isect_mesh_report, misoriented_edges),
+    OFFSET_OF(isect_mesh_report, degenerate_faces),
+    OFFSET_OF(isect_mesh_report, components),
+    OFFSET_OF(isect_mesh_report, euler_characteristic),
+    OFFSET_OF(isect_mesh_report, genus),
+    OFFSET_OF(isect_mesh_report, closed),
+    OFFSET_OF(isect_mesh_report, oriented),
+    OFFSET_OF(isect_mesh_report, volume),
+    OFFSET_OF(isect_mesh_report, area),
+    OFFSET_OF(isect_mesh_report, reserved),
 };
 
 #define CONSTANT(name) { #name, (long long)(name) }

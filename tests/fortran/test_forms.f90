@@ -1,8 +1,8 @@
 ! test_forms.f90 — the module's two ways of calling each function agree:
 ! the C form (explicit counts, type(c_ptr) opts) and the Fortran form (counts
 ! from array sizes, optional opts) give the same bits, and the helpers
-! (isect_make_ray, isect_make_shape, the 4x4 isect_xform_init) build what the
-! C API expects. Expected values are worked out by hand in the comments; the
+! (isect_make_ray, isect_make_shape, isect_make_mesh_shape, the 4x4
+! isect_xform_init) build what the C API expects. Expected values are worked out by hand in the comments; the
 ! golden corpus (corpus_runner) covers the numerics.
 program test_forms
     use, intrinsic :: iso_c_binding
@@ -18,6 +18,7 @@ program test_forms
     call check_transforms()
     call check_planar_helpers()
     call check_opts()
+    call check_mesh()
     call finish()
 
 contains
@@ -335,5 +336,108 @@ contains
         call record(isect_ray_sphere(ray, centre, 1.0_c_double, hits, opts) == ISECT_E_ARG, &
                     "an unknown opts flag is ISECT_E_ARG")
     end subroutine check_opts
+
+    ! The unit cube [0,1]^3 as 6 quads with outward normals (right-hand
+    ! rule), vertex i-1 at (x, y, z) with i-1 = x + 2y + 4z. V - E + F =
+    ! 8 - 12 + 6 = 2, volume 1, area 6. A ray along +z through (0.3, 0.6)
+    ! enters at z = 0 (t = 1) and leaves at z = 1 (t = 2).
+    subroutine check_mesh()
+        real(c_double), parameter :: corners(3, 8) = reshape([ &
+            0.0_c_double, 0.0_c_double, 0.0_c_double, 1.0_c_double, 0.0_c_double, 0.0_c_double, &
+            0.0_c_double, 1.0_c_double, 0.0_c_double, 1.0_c_double, 1.0_c_double, 0.0_c_double, &
+            0.0_c_double, 0.0_c_double, 1.0_c_double, 1.0_c_double, 0.0_c_double, 1.0_c_double, &
+            0.0_c_double, 1.0_c_double, 1.0_c_double, 1.0_c_double, 1.0_c_double, 1.0_c_double], &
+            [3, 8])
+        integer(c_int32_t), parameter :: quads(24) = [0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, &
+                                                      2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5]
+        integer(c_int64_t), target :: offsets(7) = [0, 4, 8, 12, 16, 20, 24]
+        integer(c_int32_t) :: bad(24)
+        type(c_ptr) :: mesh, c_mesh
+        type(isect_mesh_report) :: report, c_report
+        type(isect_shape) :: shape
+        type(isect_ray) :: ray
+        type(isect_hit) :: hits(4), c_hits(4)
+        integer(c_int) :: status, c_status, count, c_count
+        integer(c_int64_t) :: mold(16), bytes, c_bytes
+
+        status = isect_mesh_create(corners, quads, mesh, offsets)
+        call record(status == ISECT_OK .and. c_associated(mesh), "isect_mesh_create: OK")
+        c_status = isect_mesh_create(corners, 8_c_int64_t, quads, c_loc(offsets), 6_c_int64_t, &
+                                     c_mesh)
+        call record(c_status == ISECT_OK .and. c_associated(c_mesh), &
+                    "isect_mesh_create: OK by the C form")
+        if (status /= ISECT_OK .or. c_status /= ISECT_OK) return
+
+        status = isect_mesh_check(mesh, report)
+        c_status = isect_mesh_check(c_mesh, c_report)
+        call record(status == ISECT_OK .and. c_status == ISECT_OK, "isect_mesh_check: OK")
+        call record(all(transfer(report, mold) == transfer(c_report, mold)), &
+                    "isect_mesh_check: both forms built the same mesh")
+        call record(report%vertices == 8 .and. report%edges == 12 .and. report%faces == 6, &
+                    "mesh report: V 8, E 12, F 6")
+        call record(report%euler_characteristic == 2 .and. report%genus == 0 .and. &
+                    report%components == 1, "mesh report: chi 2, genus 0, 1 component")
+        call record(report%closed == 1 .and. report%oriented == 1 .and. &
+                    report%boundary_edges == 0 .and. report%nonmanifold_edges == 0 .and. &
+                    report%misoriented_edges == 0 .and. report%degenerate_faces == 0, &
+                    "mesh report: closed and oriented")
+        call record(near(report%volume, 1.0_c_double) .and. near(report%area, 6.0_c_double), &
+                    "mesh report: volume 1, area 6")
+        bytes = isect_mesh_bytes(mesh)
+        c_bytes = isect_mesh_bytes(c_mesh)
+        call record(bytes > 0 .and. bytes == c_bytes, "isect_mesh_bytes")
+
+        shape = isect_make_mesh_shape(mesh)
+        call record(shape%type == ISECT_MESH .and. shape%n == 0 .and. shape%flags == 0 .and. &
+                    shape%reserved == 0 .and. .not. c_associated(shape%data) .and. &
+                    c_associated(shape%mesh, mesh) .and. .not. c_associated(shape%xform), &
+                    "isect_make_mesh_shape")
+        ray = isect_make_ray([0.3_c_double, 0.6_c_double, -1.0_c_double], &
+                             [0.0_c_double, 0.0_c_double, 1.0_c_double])
+        count = isect_intersect(shape, ray, hits)
+        c_count = isect_intersect(shape, ray, c_null_ptr, c_hits, 4_c_int)
+        call record(count == 2 .and. c_count == 2 .and. same_hits(hits(1:2), c_hits(1:2)), &
+                    "mesh: 2 hits by both forms")
+        call record(near(hits(1)%t, 1.0_c_double) .and. near(hits(2)%t, 2.0_c_double) .and. &
+                    hits(1)%kind == ISECT_ENTER .and. hits(2)%kind == ISECT_EXIT, &
+                    "mesh: ENTER at t = 1, EXIT at t = 2")
+        call record(near(hits(1)%normal(3), -1.0_c_double) .and. &
+                    near(hits(2)%normal(3), 1.0_c_double), "mesh: normals -z, +z")
+        status = isect_contains(shape, [0.5_c_double, 0.5_c_double, 0.5_c_double])
+        c_status = isect_contains(shape, [1.5_c_double, 0.5_c_double, 0.5_c_double])
+        call record(status == 1 .and. c_status == 0, "mesh: contains the centre, not (1.5, .5, .5)")
+
+        call isect_mesh_destroy(mesh)
+        call isect_mesh_destroy(c_mesh)
+        call isect_mesh_destroy(c_null_ptr)
+
+        ! Index 8 of 8 vertices: ISECT_E_ARG and no mesh, by either form.
+        bad = quads
+        bad(3) = 8
+        status = isect_mesh_create(corners, bad, mesh, offsets)
+        call record(status == ISECT_E_ARG .and. .not. c_associated(mesh), &
+                    "isect_mesh_create: an index out of range is ISECT_E_ARG")
+        c_status = isect_mesh_create(corners, 8_c_int64_t, bad, c_loc(offsets), 6_c_int64_t, &
+                                     c_mesh)
+        call record(c_status == ISECT_E_ARG .and. .not. c_associated(c_mesh), &
+                    "isect_mesh_create: the same by the C form")
+        ! The Fortran form checks what only it knows: the array sizes.
+        status = isect_mesh_create(corners, quads(1:22), mesh, offsets)
+        call record(status == ISECT_E_ARG .and. .not. c_associated(mesh), &
+                    "isect_mesh_create: an offset beyond size(idx) is ISECT_E_ARG")
+        status = isect_mesh_create(corners, quads(1:23), mesh)
+        call record(status == ISECT_E_ARG .and. .not. c_associated(mesh), &
+                    "isect_mesh_create: triangles need 3*nf indices")
+        ! The same 24 indices read as 8 triangles: accepted (a mesh need not
+        ! be closed), a different mesh.
+        status = isect_mesh_create(corners, quads, mesh)
+        call record(status == ISECT_OK .and. c_associated(mesh), &
+                    "isect_mesh_create: triangles without offsets")
+        if (status == ISECT_OK) then
+            status = isect_mesh_check(mesh, report)
+            call record(status == ISECT_OK .and. report%faces == 8, "triangle mesh: 8 faces")
+        end if
+        call isect_mesh_destroy(mesh)
+    end subroutine check_mesh
 
 end program test_forms

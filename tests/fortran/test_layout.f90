@@ -2,7 +2,7 @@
 ! sees it (layout_probe.c):
 !   * every bind(C) type has the size and field offsets of its C struct, and
 !     both equal SPEC.md's numbers (ray 64, hit 80, opts 16, xform 256,
-!     shape 40 bytes on 64-bit targets);
+!     shape 40, mesh report 128 bytes on 64-bit targets);
 !   * every numeric #define ISECT_* of isect.h (read from the header given as
 !     the first argument, so a constant added there fails here until the
 !     module has it) has a module parameter with the C value;
@@ -102,6 +102,7 @@ program test_layout
     type(isect_opts), target :: opts
     type(isect_xform), target :: xform
     type(isect_shape), target :: shape
+    type(isect_mesh_report), target :: report
     character(len=4096) :: header_path
 
     if (command_argument_count() /= 1) then
@@ -141,6 +142,38 @@ program test_layout
     call check_layout("isect_shape.data", offset(c_loc(shape%data), c_loc(shape)), 16)
     call check_layout("isect_shape.mesh", offset(c_loc(shape%mesh), c_loc(shape)), 24)
     call check_layout("isect_shape.xform", offset(c_loc(shape%xform), c_loc(shape)), 32)
+
+    call check_layout("sizeof isect_mesh_report", c_sizeof(report), 128)
+    call check_layout("isect_mesh_report.vertices", &
+                      offset(c_loc(report%vertices), c_loc(report)), 0)
+    call check_layout("isect_mesh_report.edges", &
+                      offset(c_loc(report%edges), c_loc(report)), 8)
+    call check_layout("isect_mesh_report.faces", &
+                      offset(c_loc(report%faces), c_loc(report)), 16)
+    call check_layout("isect_mesh_report.boundary_edges", &
+                      offset(c_loc(report%boundary_edges), c_loc(report)), 24)
+    call check_layout("isect_mesh_report.nonmanifold_edges", &
+                      offset(c_loc(report%nonmanifold_edges), c_loc(report)), 32)
+    call check_layout("isect_mesh_report.misoriented_edges", &
+                      offset(c_loc(report%misoriented_edges), c_loc(report)), 40)
+    call check_layout("isect_mesh_report.degenerate_faces", &
+                      offset(c_loc(report%degenerate_faces), c_loc(report)), 48)
+    call check_layout("isect_mesh_report.components", &
+                      offset(c_loc(report%components), c_loc(report)), 56)
+    call check_layout("isect_mesh_report.euler_characteristic", &
+                      offset(c_loc(report%euler_characteristic), c_loc(report)), 64)
+    call check_layout("isect_mesh_report.genus", &
+                      offset(c_loc(report%genus), c_loc(report)), 72)
+    call check_layout("isect_mesh_report.closed", &
+                      offset(c_loc(report%closed), c_loc(report)), 80)
+    call check_layout("isect_mesh_report.oriented", &
+                      offset(c_loc(report%oriented), c_loc(report)), 84)
+    call check_layout("isect_mesh_report.volume", &
+                      offset(c_loc(report%volume), c_loc(report)), 88)
+    call check_layout("isect_mesh_report.area", &
+                      offset(c_loc(report%area), c_loc(report)), 96)
+    call check_layout("isect_mesh_report.reserved", &
+                      offset(c_loc(report%reserved), c_loc(report)), 104)
 
     call check_constants(trim(header_path))
     call check_other_values()

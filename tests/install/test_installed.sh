@@ -74,6 +74,10 @@ esac
 #    line x = 10 and x in [9, 11] on the x axis. From (10, -5, 0) along +y:
 #    t = 3 and 7; from the origin along +x: t = 9 and 11. The point
 #    (10, 1.5, 0) is inside (1.5 < 2 along the long axis); (11.5, 0, 0) is not.
+#  mesh_cube: the cube [-1, 1]^3 as 6 quads has V - E + F = 8 - 12 + 6 = 2,
+#    is closed and outward-oriented, volume 2^3 = 8, area 6 * 2^2 = 24; from
+#    (0.25, 0.5, -5) along +z it is entered at z = -1 (t = 4) and left at
+#    z = 1 (t = 6); its centre is inside.
 cat >"$tmp/sphere_and_polygon.expected" <<EOF
 libisect $version (ABI $abi)
 sphere: 2 hits
@@ -93,6 +97,14 @@ along x: 2 hits
   hit 2: t = 11.000, exit, point (11.000, 0.000, 0.000), normal (1.000, 0.000, 0.000)
 contains (10, 1.5, 0): 1
 contains (11.5, 0, 0): 0
+EOF
+cat >"$tmp/mesh_cube.expected" <<EOF
+mesh: 8 vertices, 12 edges, 6 faces, euler characteristic 2
+closed 1, oriented 1, volume 8.000, area 24.000
+along z: 2 hits
+  hit 1: t = 4.000, enter, point (0.250, 0.500, -1.000), normal (0.000, 0.000, -1.000)
+  hit 2: t = 6.000, exit, point (0.250, 0.500, 1.000), normal (0.000, 0.000, 1.000)
+contains (0, 0, 0): 1
 EOF
 
 # build_and_run LANGUAGE SOURCE "COMPILER AND OPTIONS" "PKG-CONFIG FLAGS":
