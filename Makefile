@@ -1,7 +1,9 @@
 # libisect — GNU make build.  `make` builds the shared and static libraries,
-# `make test` runs every test (C unit tests and the golden corpus, plain and
-# under ASan+UBSan, the export check, the corpus regeneration check, pytest),
-# `make bench` the benchmarks, `make install PREFIX=... DESTDIR=...` installs.
+# `make demo` renders the demo pictures (the main job), `make test` runs every
+# test (C unit tests and the golden corpus, plain and under ASan+UBSan, the
+# Fortran and Python suites, ABI and export checks, the corpus regeneration
+# check), `make bench` the benchmarks, `make install PREFIX=... DESTDIR=...`
+# installs.
 # meson.build builds the same library and runs the same tests.
 
 CC      ?= cc
@@ -128,13 +130,12 @@ bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
 	.venv/bin/python bench/python_bench.py
 
 # ---------------------------------------------------------------- demo
-$(B)/examples/demo: examples/demo.c $(STLIB)
-	@mkdir -p $(@D)
-	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ $(STLIB) -lm
+# The main job: renders every primitive through the Python API (batch calls,
+# threads) to demo/scene.png, and demo/exactly_once.png (libisect vs Embree).
 demo:
 	$(MAKE) --no-print-directory deps
-	$(MAKE) --no-print-directory $(B)/examples/demo
-	$(B)/examples/demo
+	$(MAKE) --no-print-directory venv
+	.venv/bin/python demo/render.py
 
 # ---------------------------------------------------------------- install
 install: lib
