@@ -7,7 +7,7 @@
  * matches the C compiler's layout, and RAY_DTYPE / HIT_DTYPE are built from
  * ffi.offsetof/ffi.sizeof. "..." makes the C compiler supply the values of
  * the integer macros. tests/python/test_layout.py checks that every ISECT_API
- * function of isect.h is declared here (or listed there as deferred).
+ * function of isect.h is declared here.
  */
 
 #define ISECT_VERSION_MAJOR ...
@@ -77,6 +77,24 @@ typedef struct isect_xform {
 
 typedef struct isect_mesh isect_mesh;
 
+typedef struct isect_mesh_report {
+    int64_t vertices;
+    int64_t edges;
+    int64_t faces;
+    int64_t boundary_edges;
+    int64_t nonmanifold_edges;
+    int64_t misoriented_edges;
+    int64_t degenerate_faces;
+    int64_t components;
+    int64_t euler_characteristic;
+    int64_t genus;
+    int32_t closed;
+    int32_t oriented;
+    double  volume;
+    double  area;
+    int64_t reserved[3];
+} isect_mesh_report;
+
 typedef struct isect_shape {
     int32_t            type;
     int32_t            n;
@@ -124,6 +142,12 @@ int64_t isect_point_in_polygon2_batch(const double *poly, int n, const double *p
                                       int64_t m, int rule, uint8_t *inside);
 int64_t isect_winding_number2_batch(const double *poly, int n, const double *pts,
                                     int64_t m, int32_t *winding);
+
+int isect_mesh_create(const double *verts, int64_t nv, const int32_t *idx,
+                      const int64_t *offsets, int64_t nf, isect_mesh **out);
+void isect_mesh_destroy(isect_mesh *mesh);
+int isect_mesh_check(const isect_mesh *mesh, isect_mesh_report *report);
+int64_t isect_mesh_bytes(const isect_mesh *mesh);
 
 int isect_xform_init(isect_xform *x, const double m[16]);
 int isect_xform_ray(const isect_xform *x, const isect_ray *world_ray, isect_ray *object_ray);

@@ -36,7 +36,8 @@ def test_public_names() -> None:
         obj = getattr(isect, name)
         if callable(obj):
             assert obj.__doc__, name
-    assert not hasattr(isect, "Mesh"), "Mesh is not bound yet (mesh issue)"
+    assert {"Mesh", "MeshReport"} <= set(isect.__all__)
+    assert issubclass(isect.Mesh, isect.Solid)
 
 
 # -------------------------------------------------------------------- shapes

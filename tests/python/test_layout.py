@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import re
 
 import isect
@@ -11,15 +12,6 @@ from conftest import ROOT
 from isect._isect import ffi, lib
 
 HEADER = ROOT / "libisect" / "include" / "isect.h"
-
-#: Functions of isect.h the package does not bind yet, with the reason. When
-#: one is bound, remove it here (the test below then insists it is in lib).
-DEFERRED = {
-    "isect_mesh_create": "Mesh: comes with the mesh issue",
-    "isect_mesh_destroy": "Mesh: comes with the mesh issue",
-    "isect_mesh_check": "Mesh: comes with the mesh issue",
-    "isect_mesh_bytes": "Mesh: comes with the mesh issue",
-}
 
 RAY_FIELDS = [("org", 0, (3,)), ("dir", 24, (3,)), ("tmin", 48, ()), ("tmax", 56, ())]
 HIT_FIELDS = [
@@ -62,6 +54,7 @@ def test_other_struct_sizes() -> None:
     """The documented sizes of the structs the package fills."""
     assert ffi.sizeof("isect_opts") == 16
     assert ffi.sizeof("isect_xform") == 256
+    assert ffi.sizeof("isect_mesh_report") == 128
     if ffi.sizeof("void *") == 8:
         assert ffi.sizeof("isect_shape") == 40
 
@@ -89,21 +82,52 @@ def test_status_table_is_the_c_constants() -> None:
     assert isect.OutOfMemoryError.status == lib.ISECT_E_NOMEM == -4
 
 
+#: isect_mesh_report: (field, offset) in declaration order; 128 bytes.
+REPORT_FIELDS = [
+    ("vertices", 0),
+    ("edges", 8),
+    ("faces", 16),
+    ("boundary_edges", 24),
+    ("nonmanifold_edges", 32),
+    ("misoriented_edges", 40),
+    ("degenerate_faces", 48),
+    ("components", 56),
+    ("euler_characteristic", 64),
+    ("genus", 72),
+    ("closed", 80),
+    ("oriented", 84),
+    ("volume", 88),
+    ("area", 96),
+    ("reserved", 104),
+]
+
+
+def test_mesh_report_layout() -> None:
+    """isect_mesh_report is laid out as isect.h documents, and MeshReport has
+    one field per C field but the reserved ones, in the same order."""
+    assert ffi.sizeof("isect_mesh_report") == 128
+    c_fields = [name for name, _ in ffi.typeof("isect_mesh_report").fields]
+    assert c_fields == [name for name, _ in REPORT_FIELDS]
+    for name, offset in REPORT_FIELDS:
+        assert ffi.offsetof("isect_mesh_report", name) == offset, name
+    assert ffi.sizeof("int64_t[3]") == 128 - 104
+    py_fields = [f.name for f in dataclasses.fields(isect.MeshReport)]
+    assert py_fields == c_fields[:-1]
+
+
 def _header_functions() -> set[str]:
     text = HEADER.read_text(encoding="utf-8")
     return set(re.findall(r"ISECT_API\b[^;(]*?\b(isect_\w+)\s*\(", text))
 
 
 def test_cdef_covers_the_header() -> None:
-    """Every function of isect.h is bound, or deferred with a reason."""
+    """Every function of isect.h is bound, and nothing else."""
     declared = _header_functions()
     assert len(declared) > 20
+    assert {"isect_mesh_create", "isect_mesh_destroy", "isect_mesh_check"} <= declared
     bound = {name for name in dir(lib) if name.startswith("isect_")}
-    missing = declared - bound - set(DEFERRED)
-    assert not missing, f"isect.h functions not in isect_cdef.h: {sorted(missing)}"
+    assert not (declared - bound), f"isect.h functions not in isect_cdef.h: {sorted(declared - bound)}"
     assert not (bound - declared), f"bound but not in isect.h: {sorted(bound - declared)}"
-    stale = set(DEFERRED) & bound
-    assert not stale, f"bound now, remove from DEFERRED: {sorted(stale)}"
 
 
 def test_header_constants_match() -> None:

@@ -8,8 +8,8 @@ Shapes (each immutable, each with ``.transformed(matrix4x4)``):
     Solids (with ``.contains``): :class:`Sphere`, :class:`Box`,
     :class:`ConvexPolyhedron`, :class:`Cylinder`, :class:`InfiniteCylinder`,
     :class:`Ellipsoid`, :class:`Quadric`.
-    Meshes (``Mesh``, ``ISECT_MESH``) arrive with libisect's mesh release; the
-    C header reserves the type and this package does not provide it yet.
+    Meshes: :class:`Mesh` (triangle or polygon faces, with a BVH; a solid
+    when closed), whose ``.check()`` returns a :class:`MeshReport`.
 
 Queries: ``shape.intersect`` (closest hit per ray, batch, ``HIT_DTYPE``),
 ``shape.intersect_rays`` (the same over a ``RAY_DTYPE`` array, zero-copy),
@@ -50,6 +50,7 @@ from ._helpers import (
     version,
     winding_number,
 )
+from ._mesh import Mesh, MeshReport
 from ._shape import Shape, Solid
 from ._shapes import (
     Box,
@@ -81,6 +82,8 @@ __all__ = [
     "HitKind",
     "InfiniteCylinder",
     "InvalidArgumentError",
+    "Mesh",
+    "MeshReport",
     "IsectError",
     "NonFiniteError",
     "OutOfMemoryError",

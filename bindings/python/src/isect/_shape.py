@@ -130,17 +130,19 @@ class Shape:
         except OverflowError:
             raise invalid(f"{type(self).__name__}: count or flag out of the int32 range") from None
         c.reserved = 0
-        self._data_ptr = ffi.from_buffer("double[]", self._data)
+        self._data_ptr, c.mesh = self._geometry()
         c.data = self._data_ptr
-        # The mesh field stays NULL: ISECT_MESH shapes arrive with the mesh issue
-        # (a Mesh class owning an isect_mesh handle; see __init__.py).
-        c.mesh = ffi.NULL
         c.xform = ffi.NULL
         # Counting the hits of a valid ray with the untransformed shape reports
         # exactly the errors of the shape's own numbers, n and flags.
         check(lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0), type(self).__name__)
         c.xform = self._xform
         self._c = c
+
+    def _geometry(self) -> tuple[Any, Any]:
+        """The descriptor's ``data`` and ``mesh`` pointers: the shape's own
+        numbers and NULL (:class:`~isect.Mesh` passes NULL and its handle)."""
+        return ffi.from_buffer("double[]", self._data), ffi.NULL
 
     # ----------------------------------------------------------- properties
 
@@ -430,6 +432,16 @@ class Shape:
         if self._matrix is not None:
             text += f".transformed({self._matrix.tolist()})"
         return text
+
+    def __copy__(self: S) -> S:
+        """A shallow copy sharing every field (the data array, a mesh handle):
+        what :meth:`transformed` starts from, without rebuilding the shape."""
+        new = object.__new__(type(self))
+        for cls in type(self).__mro__:
+            for name in getattr(cls, "__slots__", ()):
+                if name != "__weakref__" and hasattr(self, name):
+                    setattr(new, name, getattr(self, name))
+        return new
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickle as (class, data, n, flags, matrix)."""

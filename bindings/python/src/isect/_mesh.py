@@ -1,0 +1,256 @@
+"""Polygon meshes: :class:`Mesh` (``ISECT_MESH``) and its :class:`MeshReport`.
+
+A :class:`Mesh` owns one ``isect_mesh`` handle made by ``isect_mesh_create``
+(which copies the input and builds the BVH) and released by
+``isect_mesh_destroy`` through a cffi finalizer, exactly once, when the last
+Python object holding the handle goes away — transformed copies share it.
+The handle is immutable, so a mesh may be queried from many threads at once.
+Every query is the C library's; this module only marshals the input.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from ._args import ArrayLike, as_rows
+from ._errors import check, invalid
+from ._isect import ffi, lib
+from ._shape import Solid, readonly_view
+
+#: Faces: an (F, k) integer array (k = 3: triangles; k > 3: polygons of k
+#: vertices each) or a sequence of index sequences (polygons of any sizes).
+Faces = npt.ArrayLike | Sequence[Sequence[int]]
+
+_INT32_MAX = np.iinfo(np.int32).max
+
+
+@dataclasses.dataclass(frozen=True, slots=True)
+class MeshReport:
+    """Topology and measures of a mesh (``isect_mesh_report``).
+
+    Edges are the undirected vertex pairs of face boundaries.
+
+    Attributes:
+        vertices: vertices referenced by at least one face.
+        edges: distinct edges.
+        faces: faces, degenerate ones included.
+        boundary_edges: edges used by exactly one face.
+        nonmanifold_edges: edges used by three or more faces.
+        misoriented_edges: edges used twice in the same direction.
+        degenerate_faces: faces of zero area (never hit).
+        components: connected components (through shared edges).
+        euler_characteristic: V - E + F.
+        genus: for a closed, oriented mesh the sum over components of
+            (2 - chi_c) / 2; -1 otherwise.
+        closed: no boundary and no non-manifold edges.
+        oriented: no misoriented edges.
+        volume: signed enclosed volume (divergence theorem), > 0 when the
+            faces are ordered for outward normals.
+        area: total face area.
+    """
+
+    vertices: int
+    edges: int
+    faces: int
+    boundary_edges: int
+    nonmanifold_edges: int
+    misoriented_edges: int
+    degenerate_faces: int
+    components: int
+    euler_characteristic: int
+    genus: int
+    closed: bool
+    oriented: bool
+    volume: float
+    area: float
+
+    @classmethod
+    def _from_c(cls, r: Any) -> MeshReport:
+        """Copy a filled ``isect_mesh_report``."""
+        values: dict[str, Any] = {}
+        for f in dataclasses.fields(cls):
+            raw = getattr(r, f.name)
+            values[f.name] = (
+                bool(raw) if f.type == "bool" else float(raw) if f.type == "float" else int(raw)
+            )
+        return cls(**values)
+
+
+def _as_indices(a: npt.NDArray[Any], name: str) -> npt.NDArray[np.int32]:
+    """Integer vertex indices as int32 (an index beyond int32 is out of range anyway)."""
+    if a.size and a.dtype.kind not in "iu":
+        raise invalid(f"{name}: vertex indices must be integers, got dtype {a.dtype}")
+    if a.size and (a.min() < 0 or a.max() > _INT32_MAX):
+        raise invalid(f"{name}: vertex index out of range (min {a.min()}, max {a.max()})")
+    return np.ascontiguousarray(a, dtype=np.int32)
+
+
+def _as_faces(
+    faces: Faces,
+) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.int64] | None, int]:
+    """Flat indices, CSR offsets (None for a triangle array) and the face count."""
+    try:
+        a = np.asarray(faces)
+    except ValueError:  # ragged: numpy refuses an inhomogeneous nested sequence
+        a = None
+    if a is not None and a.dtype != object and a.ndim == 2:
+        nf, k = a.shape
+        idx = _as_indices(a.reshape(-1), "faces")
+        if k == 3:
+            return idx, None, nf
+        return idx, np.arange(nf + 1, dtype=np.int64) * k, nf
+    if a is not None and a.dtype != object and a.ndim == 1 and a.size == 0:
+        return np.zeros(0, dtype=np.int32), None, 0
+    if isinstance(faces, np.ndarray) and faces.dtype != object:
+        raise invalid(f"faces: expected an (F, k) integer array, got shape {faces.shape}")
+    try:
+        polys = [np.asarray(f) for f in faces]  # type: ignore[union-attr]
+        polys = [p if p.size else p.astype(np.int64) for p in polys]
+    except (TypeError, ValueError):
+        raise invalid("faces: expected an (F, k) array or a sequence of index sequences") from None
+    if any(p.ndim != 1 for p in polys):
+        raise invalid("faces: each face must be a flat sequence of vertex indices")
+    counts = np.fromiter((p.size for p in polys), dtype=np.int64, count=len(polys))
+    offsets = np.zeros(len(polys) + 1, dtype=np.int64)
+    np.cumsum(counts, out=offsets[1:])
+    flat = np.concatenate(polys) if polys else np.zeros(0, dtype=np.int32)
+    return _as_indices(flat, "faces"), offsets, len(polys)
+
+
+class Mesh(Solid):
+    """A triangle or polygon mesh with its BVH (``ISECT_MESH``).
+
+    Faces are planar polygons (convex or concave) whose vertex order gives the
+    outward normal by the right-hand rule. Every hit of a closed mesh is
+    reported exactly once, also at shared edges and vertices (pass ``eps=0``
+    for the unconditional guarantee; see isect.h). Hit ``prim`` is the face
+    index; triangles carry barycentric ``uv``. :meth:`contains` applies to
+    closed meshes (exact crossing parity; points on the surface are inside)
+    and raises :class:`InvalidArgumentError` for a mesh with boundary edges.
+    Degenerate faces are kept (never hit) and counted by :meth:`check`.
+    """
+
+    __slots__ = ("_handle", "_indices", "_offsets")
+
+    _type = lib.ISECT_MESH
+
+    _handle: Any
+    _indices: npt.NDArray[np.int32]
+    _offsets: npt.NDArray[np.int64] | None
+
+    def __init__(self, vertices: ArrayLike, faces: Faces) -> None:
+        """Build the mesh (the input is copied).
+
+        Args:
+            vertices: an (V, 3) array of vertex positions.
+            faces: an (F, 3) integer array of triangles, an (F, k) array of
+                k-gons, or a sequence of index sequences (polygons of any
+                sizes >= 3, stored as CSR offsets).
+
+        Raises:
+            InvalidArgumentError: vertices not (V, 3); faces not integers; an
+                index outside [0, V); a face of fewer than 3 vertices.
+            NonFiniteError: NaN or infinity in the vertices.
+            OutOfMemoryError: the C library could not allocate the mesh.
+        """
+        verts = as_rows(vertices, 3, "vertices")
+        idx, offsets, nf = _as_faces(faces)
+        if offsets is None and idx.size != 3 * nf:  # pragma: no cover - by construction
+            raise invalid("faces: triangle indices are not 3 per face")
+        out = ffi.new("isect_mesh **")
+        check(
+            lib.isect_mesh_create(
+                ffi.from_buffer("double[]", verts),
+                verts.shape[0],
+                ffi.from_buffer("int32_t[]", idx),
+                ffi.NULL if offsets is None else ffi.from_buffer("int64_t[]", offsets),
+                nf,
+                out,
+            ),
+            "Mesh",
+        )
+        size = int(lib.isect_mesh_bytes(out[0]))
+        self._handle = ffi.gc(out[0], lib.isect_mesh_destroy, size=size)
+        idx.flags.writeable = False
+        if offsets is not None:
+            offsets.flags.writeable = False
+        self._indices = idx
+        self._offsets = offsets
+        self._setup(verts)
+
+    def _geometry(self) -> tuple[Any, Any]:
+        """A mesh descriptor has data NULL and the handle as ``mesh``."""
+        return ffi.NULL, self._handle
+
+    # ----------------------------------------------------------- properties
+
+    @property
+    def vertices(self) -> npt.NDArray[np.float64]:
+        """The (V, 3) vertex positions (read-only copy of the input)."""
+        return self._data
+
+    @property
+    def face_indices(self) -> npt.NDArray[np.int32]:
+        """All faces' vertex indices, concatenated (int32, read-only)."""
+        return self._indices
+
+    @property
+    def face_offsets(self) -> npt.NDArray[np.int64] | None:
+        """CSR offsets (F + 1) of polygon faces, or None for a triangle array."""
+        return self._offsets
+
+    @property
+    def n_faces(self) -> int:
+        """The number of faces, degenerate ones included."""
+        return len(self._indices) // 3 if self._offsets is None else len(self._offsets) - 1
+
+    @property
+    def faces(self) -> npt.NDArray[np.int32] | list[npt.NDArray[np.int32]]:
+        """The (F, 3) triangle array, or a list of index arrays for polygon faces."""
+        if self._offsets is None:
+            return readonly_view(self._indices.reshape(-1, 3))  # type: ignore[arg-type, return-value]
+        return np.split(self._indices, self._offsets[1:-1])
+
+    @property
+    def nbytes(self) -> int:
+        """Bytes the C mesh occupies: its copy of the input and the BVH
+        (``isect_mesh_bytes``)."""
+        return int(lib.isect_mesh_bytes(self._handle))
+
+    # -------------------------------------------------------------- queries
+
+    def check(self) -> MeshReport:
+        """Topology and measures of the mesh in object space (``isect_mesh_check``;
+        a transform is not applied)."""
+        report = ffi.new("isect_mesh_report *")
+        check(lib.isect_mesh_check(self._handle, report), "Mesh.check")
+        return MeshReport._from_c(report)
+
+    # ------------------------------------------------------------ internals
+
+    def _repr_fields(self) -> str:
+        """A summary (the arrays are too long to print)."""
+        return f"<{len(self._data)} vertices, {self.n_faces} faces>"
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as (vertices, faces as indices + offsets, matrix)."""
+        return (_rebuild_mesh, (self._data, self._indices, self._offsets, self._matrix))
+
+
+def _rebuild_mesh(
+    vertices: npt.NDArray[np.float64],
+    indices: npt.NDArray[np.int32],
+    offsets: npt.NDArray[np.int64] | None,
+    matrix: npt.NDArray[np.float64] | None,
+) -> Mesh:
+    """Unpickle a mesh."""
+    if offsets is None:
+        mesh = Mesh(vertices, indices.reshape(-1, 3))
+    else:
+        mesh = Mesh(vertices, np.split(indices, offsets[1:-1]))
+    return mesh if matrix is None else mesh.transformed(matrix)
