@@ -9,22 +9,11 @@
 
 #include <math.h>
 
-int pow2_exponent(double m)
+int pow2_exponent_slow(double m)
 {
     int e = 0;
     (void)frexp(m, &e); /* frexp(0) sets e = 0 */
     return e;
-}
-
-double max_abs3(const double v[3])
-{
-    return fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
-}
-
-void scale3(double out[3], const double v[3], int e)
-{
-    for (int k = 0; k < 3; k++)
-        out[k] = ldexp(v[k], -e);
 }
 
 double sumsq_minus_sq(const double v[3], double r)
@@ -36,11 +25,23 @@ double sumsq_minus_sq(const double v[3], double r)
     return comp_value(&s);
 }
 
+/* det2_accurate (predicates.c) inlined here, operation for operation:
+ * bc_err = fma(-b, c, bc) is the exact error of the product (-b) c, whose
+ * rounding is -bc, so two_prod_err(-b, c, -bc) returns it bit for bit (see
+ * two_prod_err); the rounded a d - bc still needs the fma. */
+static inline double det2_inline(double a, double b, double c, double d)
+{
+    double bc = b * c;
+    double bc_err = two_prod_err(-b, c, -bc); /* bc - b*c, exact */
+    double diff = fma(a, d, -bc);              /* a*d - bc, one rounding */
+    return diff + bc_err;
+}
+
 void cross_accurate(double r[3], const double x[3], const double y[3])
 {
-    double c0 = det2_accurate(x[1], x[2], y[1], y[2]);
-    double c1 = det2_accurate(x[2], x[0], y[2], y[0]);
-    double c2 = det2_accurate(x[0], x[1], y[0], y[1]);
+    double c0 = det2_inline(x[1], x[2], y[1], y[2]);
+    double c1 = det2_inline(x[2], x[0], y[2], y[0]);
+    double c2 = det2_inline(x[0], x[1], y[0], y[1]);
     v3_set(r, c0, c1, c2);
 }
 
@@ -92,7 +93,7 @@ static void cross_twice(comp_sum r[3], const double x[3], const double y[3])
 static double tangency_gap(const comp_sum m[3], double r, comp_sum dd)
 {
     double rr = r * r;
-    double rr_err = fma(r, r, -rr);
+    double rr_err = two_prod_err(r, r, rr); /* = fma(r, r, -rr) */
     comp_sum g = { 0.0, 0.0 };
     comp_add_product(&g, rr, dd.hi); /* r^2 d.d, to second order */
     g.lo += rr * dd.lo + rr_err * dd.hi;
@@ -101,6 +102,46 @@ static double tangency_gap(const comp_sum m[3], double r, comp_sum dd)
         g.lo -= 2.0 * m[k].hi * m[k].lo;
     }
     return comp_value(&g) / (rr * dd.hi);
+}
+
+/*
+ * 1 when the line certainly misses by the margin that makes the full
+ * computation below return no crossing, decided in plain arithmetic (about
+ * half of all rays in a batch miss; they skip the compensated sums).
+ * f, d, r are the scaled values of line_sphere_roots: |f| <= 2^500,
+ * max|d_k| in [0.5, 1), r >= 2^-501 (so r^2 is normal).
+ *
+ * Numerics (u = 2^-53). M = f x d exact, X = r^2 |d|^2 exact, rho = |M|^2/X
+ * = (h/r)^2. The plain cross product m (two products and a difference per
+ * component) errs by at most 2.01u (|f_i d_j| + |f_j d_i|) + 2^-1073 <= A =
+ * 2^-50 fm dm + 2^-1070 per component (fm, dm the largest |f_k|, |d_k|; the
+ * absolute term covers subnormal products). Requiring A <= 2^-32 max|m_k|
+ * gives |M| >= |m| (1 - 2^-30), and max|m_k| >= 2^-400 keeps the plain
+ * mm = m.m normal, so |M|^2 >= mm (1 - 2^-28) up to a few u. On the other
+ * side rr dd (rounded r^2 and d.d) gives X <= rr dd (1 + 6u). Then
+ *     mm (1 - 2^-28) > (1 + eps) rr dd (1 + 2^-26)   (each side rounded)
+ * implies rho >= (1 + eps)(1 + 2^-28). The full computation forms
+ * delta = 1 - rho (tangency_gap) with a relative error of a few u plus
+ * O(u^2)(1 + rho), so its delta is below -(eps + 2^-28 (1 + eps))(1 - 5u)
+ * < -eps: neither TOUCH (|delta| <= eps) nor a crossing (delta > 0), i.e.
+ * exactly the count 0 returned here. Overflow of the right side (huge eps)
+ * or any NaN makes the test false and the full computation decides.
+ */
+static int clear_miss(const double f[3], const double d[3], double r, double eps)
+{
+    double m0 = f[1] * d[2] - f[2] * d[1];
+    double m1 = f[2] * d[0] - f[0] * d[2];
+    double m2 = f[0] * d[1] - f[1] * d[0];
+    double m_max = max_abs3((const double[3]){ m0, m1, m2 });
+    /* A <= 2^-32 m_max, split in two so that no subnormal constant is
+     * ever an operand (a subnormal operand costs a microcode assist):
+     * 2^-1070 <= 2^-33 m_max follows from m_max >= 2^-400. */
+    double a = 0x1p-50 * (max_abs3(f) * max_abs3(d));
+    if (!(m_max >= 0x1p-400 && a <= 0x1p-33 * m_max))
+        return 0;
+    double mm = m0 * m0 + m1 * m1 + m2 * m2;
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    return mm * (1.0 - 0x1p-28) > (1.0 + eps) * (r * r) * dd * (1.0 + 0x1p-26);
 }
 
 /*
@@ -137,16 +178,18 @@ void line_sphere_roots(const double f_in[3], const double d_in[3], double r_in, 
                        line_sphere *out)
 {
     out->count = 0;
-    int e = pow2_exponent(fmax(max_abs3(f_in), r_in));
+    int e = pow2_exponent(fmax_nan(max_abs3(f_in), r_in));
     if (pow2_exponent(r_in) - e < -500)
         e = pow2_exponent(r_in) + 500;
     int e_dir = pow2_exponent(max_abs3(d_in));
     double f[3], d[3];
     scale3(f, f_in, e);
     scale3(d, d_in, e_dir);
-    double r = ldexp(r_in, -e);
+    double r = pow2_scale(r_in, -e);
     if (!(r > 0.0) || !(max_abs3(f) < 0x1p500))
         return; /* a sphere below 2^-1000 of its distance: nothing to hit */
+    if (clear_miss(f, d, r, eps))
+        return;
     int t_shift = e - e_dir; /* f + t' d in scaled units: t = t' 2^t_shift */
 
     comp_sum dd_sum = { 0.0, 0.0 }, fd_sum = { 0.0, 0.0 };
@@ -166,7 +209,7 @@ void line_sphere_roots(const double f_in[3], const double d_in[3], double r_in, 
 
     if (fabs(delta) <= eps) {
         out->count = 1;
-        out->t[0] = ldexp(t_mid, t_shift) + 0.0; /* + 0.0: t = 0 as +0.0 */
+        out->t[0] = pow2_scale(t_mid, t_shift) + 0.0; /* + 0.0: t = 0 as +0.0 */
         normal_or_facing(out->normal[0], l, d, ISECT_TOUCH);
         return;
     }
@@ -186,10 +229,10 @@ void line_sphere_roots(const double f_in[3], const double d_in[3], double r_in, 
 
     double v[3];
     out->count = 2;
-    out->t[0] = ldexp(t_lo, t_shift) + 0.0;
+    out->t[0] = pow2_scale(t_lo, t_shift) + 0.0;
     v3_madd(v, l, -w, d);
     normal_or_facing(out->normal[0], v, d, ISECT_ENTER);
-    out->t[1] = ldexp(t_hi, t_shift) + 0.0;
+    out->t[1] = pow2_scale(t_hi, t_shift) + 0.0;
     v3_madd(v, l, w, d);
     normal_or_facing(out->normal[1], v, d, ISECT_EXIT);
 }
@@ -211,10 +254,10 @@ void quadratic_roots(comp_sum a, comp_sum b, comp_sum c, double eps, quad_roots 
     a = comp_normalized(a);
     b = comp_normalized(b);
     c = comp_normalized(c);
-    int e = pow2_exponent(fmax(fabs(a.hi), fmax(fabs(b.hi), fabs(c.hi))));
-    double ah = ldexp(a.hi, -e), al = ldexp(a.lo, -e);
-    double bh = ldexp(b.hi, -e), bl = ldexp(b.lo, -e);
-    double ch = ldexp(c.hi, -e), cl = ldexp(c.lo, -e);
+    int e = pow2_exponent(fmax_nan(fabs(a.hi), fmax_nan(fabs(b.hi), fabs(c.hi))));
+    double ah = pow2_scale(a.hi, -e), al = pow2_scale(a.lo, -e);
+    double bh = pow2_scale(b.hi, -e), bl = pow2_scale(b.lo, -e);
+    double ch = pow2_scale(c.hi, -e), cl = pow2_scale(c.lo, -e);
     double disc = det2_accurate(bh, 4.0 * ah, ch, bh)
                 + (2.0 * bh * bl - 4.0 * (ah * cl + al * ch));
     if (fabs(disc) <= eps * (bh * bh + 4.0 * fabs(ah * ch))) {

@@ -25,6 +25,8 @@
 #include "isect.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* The crossings of a line with a sphere. */
 typedef struct line_sphere {
@@ -66,11 +68,41 @@ static inline void comp_add(comp_sum *s, double x)
     s->hi = sum;
 }
 
-/* x*y = p + fma residual, both accumulated. */
+/*
+ * x*y - p for p = fl(x*y): the exact rounding error of the product, bit for
+ * bit fma(x, y, -p), without a libm call in the common case (without -mfma
+ * the compiler calls fma(), which also forces every live double to be
+ * spilled around the call).
+ *
+ * Numerics. Dekker's TwoProduct with Veltkamp's split (x = xh + xl, xh of
+ * 26 bits, exact while 2^27 x does not overflow) gives the exact error
+ * x*y - p whenever no partial product underflows (Dekker 1971; Boldo 2006:
+ * e_x + e_y >= emin + p - 1 = -970 suffices). The guards below keep
+ * |x|, |y| <= 2^995 (the split cannot overflow) and 2^-860 <= |p| <= 2^1000
+ * (so e_x + e_y >= -861 and nothing overflows); then the error is exactly
+ * representable, so fma(x, y, -p), which rounds it once, returns the same
+ * value. Zeros: with p != 0, fma's exact-zero result is +0, and Dekker's sum
+ * starts with xh*yh - p (nonzero factors, so +0 when zero) and adds the
+ * rest in order, so it is +0 too. Any other case calls fma itself.
+ */
+static inline double two_prod_err(double x, double y, double p)
+{
+    double ap = fabs(p);
+    if (fabs(x) <= 0x1p995 && fabs(y) <= 0x1p995 && ap >= 0x1p-860 && ap <= 0x1p1000) {
+        const double split = 134217729.0; /* 2^27 + 1 */
+        double cx = split * x, cy = split * y;
+        double xh = cx - (cx - x), yh = cy - (cy - y);
+        double xl = x - xh, yl = y - yh;
+        return ((xh * yh - p) + xh * yl + xl * yh) + xl * yl;
+    }
+    return fma(x, y, -p);
+}
+
+/* x*y = p + its exact residual, both accumulated. */
 static inline void comp_add_product(comp_sum *s, double x, double y)
 {
     double p = x * y;
-    s->lo += fma(x, y, -p);
+    s->lo += two_prod_err(x, y, p);
     comp_add(s, p);
 }
 
@@ -78,7 +110,7 @@ static inline void comp_add_product(comp_sum *s, double x, double y)
 static inline void comp_add_product3(comp_sum *s, double x, double y, double z)
 {
     double p = x * y;
-    s->lo += fma(x, y, -p) * z;
+    s->lo += two_prod_err(x, y, p) * z;
     comp_add_product(s, p, z);
 }
 
@@ -123,14 +155,72 @@ double sumsq_minus_sq(const double v[3], double r);
  * algorithm, relative error <= 2u per component whatever the cancellation). */
 void cross_accurate(double r[3], const double x[3], const double y[3]);
 
-/* e such that m * 2^-e lies in [0.5, 1); 0 for m == 0. */
-int pow2_exponent(double m);
+/*
+ * Power-of-two helpers, inline and free of libm calls in the common case
+ * (they run on every ray of the quadric family).
+ *
+ * pow2_exponent(): for a normal m the exponent comes straight from the
+ * biased exponent field (m = 1.f * 2^(E-1023) = 0.1f * 2^(E-1022), so frexp
+ * would return E - 1022); zero, subnormals, inf and NaN take frexp itself,
+ * so every input gives frexp's answer bit for bit.
+ *
+ * pow2_scale(x, k) = x * 2^k. While -1022 <= k <= 1023, 2^k is a normal
+ * double built from its bits, and x * 2^k is one IEEE multiplication: the
+ * exact product rounded once (exact unless it leaves the normal range, and
+ * then rounded/overflowed exactly as the exact value dictates). ldexp (and
+ * glibc's scalbn) return that same correctly rounded value, so the result
+ * is bit for bit ldexp(x, k), including subnormal and infinite results.
+ * Outside that k range 2^k is not a normal double: ldexp itself is used.
+ *
+ * fmax_nan(a, b) is C99 fmax for the values used here (NaN ignored, the
+ * larger otherwise; the callers never compare +0 with -0 as their inputs
+ * are fabs() or known positive), written as a compare and select because
+ * without -ffast-math the compiler emits a libm call for fmax.
+ */
+int pow2_exponent_slow(double m);
 
-/* max(|v0|, |v1|, |v2|) */
-double max_abs3(const double v[3]);
+static inline int pow2_exponent(double m)
+{
+    uint64_t bits;
+    memcpy(&bits, &m, sizeof bits);
+    int biased = (int)((bits >> 52) & 0x7ff);
+    if (biased != 0 && biased != 0x7ff)
+        return biased - 1022;
+    return pow2_exponent_slow(m); /* 0, subnormal, inf, NaN */
+}
 
-/* out = v * 2^-e, exact */
-void scale3(double out[3], const double v[3], int e);
+static inline double pow2_scale(double x, int k)
+{
+    if (k >= -1022 && k <= 1023) {
+        uint64_t bits = (uint64_t)(k + 1023) << 52;
+        double p;
+        memcpy(&p, &bits, sizeof p);
+        return x * p;
+    }
+    return ldexp(x, k);
+}
+
+static inline double fmax_nan(double a, double b)
+{
+    /* b > a ? b : a is one maxsd (no data-dependent branch: random rays
+     * would mispredict it); it keeps a NaN a, which the second select,
+     * never taken for the finite inputs of the hot paths, replaces by b. */
+    double m = b > a ? b : a;
+    return m != m ? b : m;
+}
+
+/* max(|v0|, |v1|, |v2|), NaN components ignored as by fmax */
+static inline double max_abs3(const double v[3])
+{
+    return fmax_nan(fabs(v[0]), fmax_nan(fabs(v[1]), fabs(v[2])));
+}
+
+/* out = v * 2^-e, exact (bit for bit ldexp(v, -e)) */
+static inline void scale3(double out[3], const double v[3], int e)
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = pow2_scale(v[k], -e);
+}
 
 /* out = v/|v| for any finite v, computed after scaling v by a power of two
  * (so neither |v| nor the division can overflow or underflow, unlike

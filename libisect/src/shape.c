@@ -53,10 +53,41 @@ static int64_t analytic_hits_all(const shape_family *f, const isect_shape *s,
     return count;
 }
 
+/* hits.c's order: (t, prim) lexicographic. */
+static inline int hit_before_first(const isect_hit *a, const isect_hit *b)
+{
+    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+}
+
+/*
+ * The first record of analytic_hits_all without sorting or copying the
+ * rest. hits_finish keeps the same hits (same range test, same culling) in
+ * kernel order and insertion-sorts them, which is stable under the strict
+ * weak order hit_before (kept t are never NaN); so its first record is the
+ * earliest kernel record among those no other kept record precedes. The
+ * scan below picks exactly that one (it replaces only on strictly before)
+ * and copies that very record: bit for bit the same.
+ */
 static int analytic_hit_first(const shape_family *f, const isect_shape *s,
                               const isect_ray *ray, const isect_params *prm, isect_hit *out)
 {
-    return analytic_hits_all(f, s, ray, prm, out, 1) > 0;
+    isect_hit found[ISECT_MAX_HITS];
+    int count = f->hits(s, ray, prm, found);
+    int cull_exit = count > 0 && (prm->flags & ISECT_CULL_BACK) && !shape_is_solid(f, s);
+    int best = -1;
+    for (int i = 0; i < count; i++) {
+        /* The comparison is false for NaN, so a NaN t can never escape. */
+        if (!(found[i].t >= ray->tmin && found[i].t <= ray->tmax))
+            continue;
+        if (cull_exit && found[i].kind == ISECT_EXIT)
+            continue;
+        if (best < 0 || hit_before_first(&found[i], &found[best]))
+            best = i;
+    }
+    if (best < 0)
+        return 0;
+    *out = found[best];
+    return 1;
 }
 
 #define FAMILY(X, solidity, uses_n, uses_flags)                                 \

@@ -76,17 +76,16 @@ int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
         return 0;
     /* org - c without overflow: both scaled by the power of two of the
      * largest coordinate first (exact), t scaled back at the end. */
-    int e = pow2_exponent(fmax(r, fmax(max_abs3(ray->org), max_abs3(c))));
-    double org_s[3], c_s[3], f[3];
-    scale3(org_s, ray->org, e);
-    scale3(c_s, c, e);
-    v3_sub(f, org_s, c_s);
+    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c))));
+    double f[3];
+    for (int k = 0; k < 3; k++) /* the same operations as scale3 + v3_sub */
+        f[k] = pow2_scale(ray->org[k], -e) - pow2_scale(c[k], -e);
 
     line_sphere ls;
-    line_sphere_roots(f, ray->dir, ldexp(r, -e), prm->eps, &ls);
+    line_sphere_roots(f, ray->dir, pow2_scale(r, -e), prm->eps, &ls);
     crossing cr[2];
     for (int i = 0; i < ls.count; i++) {
-        cr[i].t = ldexp(ls.t[i], e);
+        cr[i].t = pow2_scale(ls.t[i], e);
         v3_copy(cr[i].normal, ls.normal[i]);
         v3_madd(cr[i].snapped, c, r, ls.normal[i]);
     }
@@ -99,12 +98,12 @@ int sphere_contains(const isect_shape *s, const double p[3])
     double r = s->data[3];
     if (r == 0.0)
         return 0;
-    int e = pow2_exponent(fmax(r, fmax(max_abs3(p), max_abs3(c))));
+    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(p), max_abs3(c))));
     double p_s[3], c_s[3], f[3];
     scale3(p_s, p, e);
     scale3(c_s, c, e);
     v3_sub(f, p_s, c_s);
-    return sumsq_minus_sq(f, ldexp(r, -e)) <= 0.0;
+    return sumsq_minus_sq(f, pow2_scale(r, -e)) <= 0.0;
 }
 
 ISECT_API int isect_ray_sphere(const isect_ray *ray, const double c[3], double r,
@@ -140,12 +139,12 @@ static int ellipsoid_frame_make(const double *data, const double org[3], const d
     const double *c = data, *radii = data + 3;
     if (radii[0] == 0.0 || radii[1] == 0.0 || radii[2] == 0.0)
         return 0;
-    int e = pow2_exponent(fmax(max_abs3(radii), fmax(max_abs3(org), max_abs3(c))));
+    int e = pow2_exponent(fmax_nan(max_abs3(radii), fmax_nan(max_abs3(org), max_abs3(c))));
     int e_dir = dir != NULL ? pow2_exponent(max_abs3(dir)) : 0;
     for (int k = 0; k < 3; k++) {
-        fr->radii_s[k] = ldexp(radii[k], -e);
-        fr->y0[k] = (ldexp(org[k], -e) - ldexp(c[k], -e)) / fr->radii_s[k];
-        fr->dy[k] = dir != NULL ? ldexp(dir[k], -e_dir) / fr->radii_s[k] : 0.0;
+        fr->radii_s[k] = pow2_scale(radii[k], -e);
+        fr->y0[k] = (pow2_scale(org[k], -e) - pow2_scale(c[k], -e)) / fr->radii_s[k];
+        fr->dy[k] = dir != NULL ? pow2_scale(dir[k], -e_dir) / fr->radii_s[k] : 0.0;
     }
     fr->t_shift = e - e_dir;
     return all_finite(fr->y0, 3) && all_finite(fr->dy, 3);
@@ -175,7 +174,7 @@ int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_param
     double r_min = fmin(fr.radii_s[0], fmin(fr.radii_s[1], fr.radii_s[2]));
     crossing cr[2];
     for (int i = 0; i < ls.count; i++) {
-        cr[i].t = ldexp(ls.t[i], fr.t_shift);
+        cr[i].t = pow2_scale(ls.t[i], fr.t_shift);
         double g[3];
         for (int k = 0; k < 3; k++) {
             g[k] = ls.normal[i][k] * (r_min / fr.radii_s[k]);

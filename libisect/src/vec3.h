@@ -44,10 +44,24 @@ static inline void v3_cross(double r[3], const double a[3], const double b[3])
     double z = a[0] * b[1] - a[1] * b[0];
     r[0] = x; r[1] = y; r[2] = z;
 }
+/* max(|a0|, |a1|, |a2|) ignoring NaN components, exactly as the nested
+ * fmax(fabs(.), ...) it replaces (all NaN: NaN), but as maxsd selects: without
+ * -ffast-math fmax is a libm call, and a compare-and-branch would
+ * mispredict on random rays. b > m ? b : m keeps m when b is NaN; the
+ * second select (never taken for finite input) drops a NaN m for b. */
+static inline double v3_fmax_nan(double m, double b)
+{
+    double r = b > m ? b : m;
+    return r != r ? b : r;
+}
+static inline double v3_max_abs(const double a[3])
+{
+    return v3_fmax_nan(fabs(a[0]), v3_fmax_nan(fabs(a[1]), fabs(a[2])));
+}
 /* |a| without overflow or underflow for any finite a (hypot-style scaling). */
 static inline double v3_norm(const double a[3])
 {
-    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    double m = v3_max_abs(a);
     if (m == 0.0 || !isfinite(m))
         return m;
     double x = a[0] / m, y = a[1] / m, z = a[2] / m;
@@ -58,7 +72,7 @@ static inline double v3_norm(const double a[3])
  * would overflow) still comes out unit. */
 static inline double v3_normalize(double r[3], const double a[3])
 {
-    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    double m = v3_max_abs(a);
     if (!(m > 0.0) || !isfinite(m)) {
         v3_set(r, 0.0, 0.0, 0.0);
         return m;
