@@ -11,7 +11,7 @@
 #   make abi-baseline   rewrite libisect/abi/libisect.so.1.abi (only when an
 #                       ABI change is intended: a new release's additions)
 #   make install        also installs isect.mod, libisect_fortran.a and
-#                       isect-fortran.pc (see docs/fortran.md)
+#                       isect-fortran.pc (see README.md, "Using libisect from Fortran")
 
 # GNU make's built-in FC is f77; the module is Fortran 2008.
 ifeq ($(origin FC),default)

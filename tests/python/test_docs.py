@@ -9,9 +9,9 @@ from conftest import ROOT
 
 
 def python_blocks() -> list[tuple[str, str]]:
-    """```python blocks of docs/python.md and of README.md's Python section."""
+    """```python blocks of README.md's Python section."""
     blocks = []
-    for path in (ROOT / "docs" / "python.md", ROOT / "README.md"):
+    for path in (ROOT / "README.md",):
         if not path.is_file():
             continue
         text = path.read_text(encoding="utf-8")
@@ -26,7 +26,7 @@ def python_blocks() -> list[tuple[str, str]]:
 BLOCKS = python_blocks()
 
 
-@pytest.mark.skipif(not BLOCKS, reason="no Python examples in docs/python.md or README.md")
+@pytest.mark.skipif(not BLOCKS, reason="no Python examples in README.md")
 @pytest.mark.parametrize("code", [c for _, c in BLOCKS], ids=[n for n, _ in BLOCKS])
 def test_example_runs(code: str, capsys: pytest.CaptureFixture[str]) -> None:
     """Each example executes without error and prints something."""
