@@ -42,10 +42,8 @@ ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ra
     if (!batch_args_ok(rays, n, closest))
         return ISECT_E_ARG;
     isect_params prm;
-    int status = params_from_opts(opts, &prm);
-    if (status != ISECT_OK)
-        return status;
-    const shape_family *f = shape_prepare(shape, &status);
+    int status;
+    const shape_family *f = query_prepare(shape, opts, &prm, &status);
     if (f == NULL)
         return status;
 
@@ -70,10 +68,8 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
         || (cap > 0 && hits == NULL))
         return ISECT_E_ARG;
     isect_params prm;
-    int status = params_from_opts(opts, &prm);
-    if (status != ISECT_OK)
-        return status;
-    const shape_family *f = shape_prepare(shape, &status);
+    int status;
+    const shape_family *f = query_prepare(shape, opts, &prm, &status);
     if (f == NULL)
         return status;
 

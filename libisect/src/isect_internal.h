@@ -79,6 +79,11 @@ typedef struct shape_family shape_family;
  * family, or NULL with *status set to the error. */
 const shape_family *shape_prepare(const isect_shape *s, int *status);
 
+/* The options, then the shape, of a ray query (the order every entry point
+ * checks them in): the family, or NULL with *status set. */
+const shape_family *query_prepare(const isect_shape *s, const isect_opts *opts,
+                                  isect_params *prm, int *status);
+
 /* All hits of a valid world-space ray with a prepared shape in [tmin, tmax],
  * sorted, the first min(count, cap) written in world space; returns count,
  * or ISECT_E_NONFINITE if the transform takes the ray out of the finite

@@ -16,6 +16,8 @@
 #ifndef ISECT_PREDICATES_H
 #define ISECT_PREDICATES_H
 
+#include <math.h>
+
 #include "isect.h"
 
 /* Sign of (a - c) x (b - c): +1 when a, b, c turn counter-clockwise, -1
@@ -62,9 +64,41 @@ int collinear3(const double a[3], const double b[3], const double c[3]);
  * triple products must not underflow); outside that range deterministic. */
 int orient3_sign(const double a[3], const double b[3], const double c[3], const double d[3]);
 
+/*
+ * fma(x, y, -p) for p = fl(x*y) != 0, i.e. the exact product error, by
+ * Dekker's TwoProduct (Veltkamp split) where that is exact: |x|, |y| <=
+ * 2^995 (no overflow in the split) and 2^-860 <= |p| <= 2^1000 (e_x + e_y
+ * >= -861, far above the -970 below which partial products could lose bits
+ * to underflow). The error is then representable, so fma returns it
+ * unrounded and both agree bit for bit (an exact zero is +0 in both: the
+ * Dekker sum starts with xh*yh - p, nonzero factors). Elsewhere fma itself.
+ * Without -mfma, fma() is a libm call that spills every live register.
+ */
+static inline double product_error(double x, double y, double p)
+{
+    double ap = fabs(p);
+    if (fabs(x) <= 0x1p995 && fabs(y) <= 0x1p995 && ap >= 0x1p-860 && ap <= 0x1p1000) {
+        const double split = 134217729.0; /* 2^27 + 1 */
+        double cx = split * x, cy = split * y;
+        double xh = cx - (cx - x), yh = cy - (cy - y);
+        double xl = x - xh, yl = y - yh;
+        return ((xh * yh - p) + xh * yl + xl * yh) + xl * yl;
+    }
+    return fma(x, y, -p);
+}
+
 /* a*d - b*c with relative error <= 2u by Kahan's FMA algorithm
  * (Jeannerod, Louvet & Muller, Math. Comp. 2013); away from underflow the
- * result is zero exactly when a*d == b*c and otherwise has the right sign. */
-double det2_accurate(double a, double b, double c, double d);
+ * result is zero exactly when a*d == b*c and otherwise has the right sign.
+ * Inline: the quadric family calls it on every ray. */
+static inline double det2_accurate(double a, double b, double c, double d)
+{
+    double bc = b * c;
+    /* fma(-b, c, bc) = (-b) c - fl((-b) c): fl((-b) c) = -bc exactly (sign
+     * symmetry of rounding), so this is product_error(-b, c, -bc). */
+    double bc_err = product_error(-b, c, -bc); /* bc - b*c, exact */
+    double diff = fma(a, d, -bc);   /* a*d - bc, one rounding */
+    return diff + bc_err;
+}
 
 #endif /* ISECT_PREDICATES_H */

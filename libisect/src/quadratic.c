@@ -25,23 +25,12 @@ double sumsq_minus_sq(const double v[3], double r)
     return comp_value(&s);
 }
 
-/* det2_accurate (predicates.c) inlined here, operation for operation:
- * bc_err = fma(-b, c, bc) is the exact error of the product (-b) c, whose
- * rounding is -bc, so two_prod_err(-b, c, -bc) returns it bit for bit (see
- * two_prod_err); the rounded a d - bc still needs the fma. */
-static inline double det2_inline(double a, double b, double c, double d)
-{
-    double bc = b * c;
-    double bc_err = two_prod_err(-b, c, -bc); /* bc - b*c, exact */
-    double diff = fma(a, d, -bc);              /* a*d - bc, one rounding */
-    return diff + bc_err;
-}
 
 void cross_accurate(double r[3], const double x[3], const double y[3])
 {
-    double c0 = det2_inline(x[1], x[2], y[1], y[2]);
-    double c1 = det2_inline(x[2], x[0], y[2], y[0]);
-    double c2 = det2_inline(x[0], x[1], y[0], y[1]);
+    double c0 = det2_accurate(x[1], x[2], y[1], y[2]);
+    double c1 = det2_accurate(x[2], x[0], y[2], y[0]);
+    double c2 = det2_accurate(x[0], x[1], y[0], y[1]);
     v3_set(r, c0, c1, c2);
 }
 
@@ -93,7 +82,7 @@ static void cross_twice(comp_sum r[3], const double x[3], const double y[3])
 static double tangency_gap(const comp_sum m[3], double r, comp_sum dd)
 {
     double rr = r * r;
-    double rr_err = two_prod_err(r, r, rr); /* = fma(r, r, -rr) */
+    double rr_err = product_error(r, r, rr); /* = fma(r, r, -rr) */
     comp_sum g = { 0.0, 0.0 };
     comp_add_product(&g, rr, dd.hi); /* r^2 d.d, to second order */
     g.lo += rr * dd.lo + rr_err * dd.hi;

@@ -22,6 +22,8 @@
 #ifndef ISECT_QUADRATIC_H
 #define ISECT_QUADRATIC_H
 
+#include "predicates.h"
+
 #include "isect.h"
 
 #include <math.h>
@@ -68,41 +70,12 @@ static inline void comp_add(comp_sum *s, double x)
     s->hi = sum;
 }
 
-/*
- * x*y - p for p = fl(x*y): the exact rounding error of the product, bit for
- * bit fma(x, y, -p), without a libm call in the common case (without -mfma
- * the compiler calls fma(), which also forces every live double to be
- * spilled around the call).
- *
- * Numerics. Dekker's TwoProduct with Veltkamp's split (x = xh + xl, xh of
- * 26 bits, exact while 2^27 x does not overflow) gives the exact error
- * x*y - p whenever no partial product underflows (Dekker 1971; Boldo 2006:
- * e_x + e_y >= emin + p - 1 = -970 suffices). The guards below keep
- * |x|, |y| <= 2^995 (the split cannot overflow) and 2^-860 <= |p| <= 2^1000
- * (so e_x + e_y >= -861 and nothing overflows); then the error is exactly
- * representable, so fma(x, y, -p), which rounds it once, returns the same
- * value. Zeros: with p != 0, fma's exact-zero result is +0, and Dekker's sum
- * starts with xh*yh - p (nonzero factors, so +0 when zero) and adds the
- * rest in order, so it is +0 too. Any other case calls fma itself.
- */
-static inline double two_prod_err(double x, double y, double p)
-{
-    double ap = fabs(p);
-    if (fabs(x) <= 0x1p995 && fabs(y) <= 0x1p995 && ap >= 0x1p-860 && ap <= 0x1p1000) {
-        const double split = 134217729.0; /* 2^27 + 1 */
-        double cx = split * x, cy = split * y;
-        double xh = cx - (cx - x), yh = cy - (cy - y);
-        double xl = x - xh, yl = y - yh;
-        return ((xh * yh - p) + xh * yl + xl * yh) + xl * yl;
-    }
-    return fma(x, y, -p);
-}
 
 /* x*y = p + its exact residual, both accumulated. */
 static inline void comp_add_product(comp_sum *s, double x, double y)
 {
     double p = x * y;
-    s->lo += two_prod_err(x, y, p);
+    s->lo += product_error(x, y, p);
     comp_add(s, p);
 }
 
@@ -110,7 +83,7 @@ static inline void comp_add_product(comp_sum *s, double x, double y)
 static inline void comp_add_product3(comp_sum *s, double x, double y, double z)
 {
     double p = x * y;
-    s->lo += two_prod_err(x, y, p) * z;
+    s->lo += product_error(x, y, p) * z;
     comp_add_product(s, p, z);
 }
 

@@ -141,6 +141,13 @@ const shape_family *shape_prepare(const isect_shape *s, int *status)
     return *status == ISECT_OK ? f : NULL;
 }
 
+const shape_family *query_prepare(const isect_shape *s, const isect_opts *opts,
+                                  isect_params *prm, int *status)
+{
+    *status = params_from_opts(opts, prm);
+    return *status == ISECT_OK ? shape_prepare(s, status) : NULL;
+}
+
 /* The object-space ray of a valid world ray: *r points at ray itself, or at
  * tmp holding the transformed ray. A huge inverse can overflow a fine ray. */
 static int object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
@@ -202,10 +209,8 @@ ISECT_API int isect_intersect(const isect_shape *shape, const isect_ray *ray,
     if (ray == NULL || cap < 0 || (hits == NULL && cap > 0))
         return ISECT_E_ARG;
     isect_params prm;
-    int status = params_from_opts(opts, &prm);
-    if (status != ISECT_OK)
-        return status;
-    const shape_family *f = shape_prepare(shape, &status);
+    int status;
+    const shape_family *f = query_prepare(shape, opts, &prm, &status);
     if (f == NULL)
         return status;
     status = ray_check(ray);
