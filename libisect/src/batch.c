@@ -10,26 +10,6 @@
 
 #include <string.h>
 
-/*
- * ray_check (validate.c) for the closest-hit loop, same status for every
- * ray: the status depends only on whether org, dir are all finite, tmin or
- * tmax is NaN, and dir is all zero, so any exact way of testing those gives
- * the same answer. x - x is 0 for finite x and NaN for +-Inf or NaN, and a
- * NaN survives any sum, so one tree of additions (depth 3, instead of
- * all_finite's serial chain of six dependent additions) tests all six.
- */
-static inline int batch_ray_check(const isect_ray *ray)
-{
-    const double *o = ray->org, *d = ray->dir;
-    double probe = ((o[0] - o[0]) + (o[1] - o[1])) + ((o[2] - o[2]) + (d[0] - d[0]))
-                 + ((d[1] - d[1]) + (d[2] - d[2]));
-    if (probe != 0.0 || isnan(ray->tmin) || isnan(ray->tmax))
-        return ISECT_E_NONFINITE;
-    if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0)
-        return ISECT_E_DEGENERATE;
-    return ISECT_OK;
-}
-
 static int batch_args_ok(const void *in, int64_t n, const void *out)
 {
     return n >= 0 && (n == 0 || (in != NULL && out != NULL));
@@ -49,7 +29,7 @@ ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ra
 
     int64_t hit_count = 0;
     for (int64_t i = 0; i < n; i++) {
-        int found = batch_ray_check(&rays[i]);
+        int found = ray_check(&rays[i]);
         if (found == ISECT_OK)
             found = shape_ray_first(f, shape, &rays[i], &prm, &closest[i]);
         if (found > 0)

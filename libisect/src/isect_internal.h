@@ -48,8 +48,21 @@ typedef struct isect_params {
 int params_from_opts(const isect_opts *opts, isect_params *prm);
 
 /* ISECT_OK, ISECT_E_NONFINITE (NaN/Inf in org/dir, NaN in tmin/tmax) or
- * ISECT_E_DEGENERATE (dir == 0). */
-int ray_check(const isect_ray *ray);
+ * ISECT_E_DEGENERATE (dir == 0). Inline: every ray of a batch passes here.
+ * x - x is 0 for finite x and NaN for +-Inf or NaN, and a NaN survives any
+ * sum, so one tree of additions (depth 3, not a serial chain of six) tests
+ * all six coordinates. */
+static inline int ray_check(const isect_ray *ray)
+{
+    const double *o = ray->org, *d = ray->dir;
+    double probe = ((o[0] - o[0]) + (o[1] - o[1])) + ((o[2] - o[2]) + (d[0] - d[0]))
+                 + ((d[1] - d[1]) + (d[2] - d[2]));
+    if (probe != 0.0 || isnan(ray->tmin) || isnan(ray->tmax))
+        return ISECT_E_NONFINITE;
+    if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0)
+        return ISECT_E_DEGENERATE;
+    return ISECT_OK;
+}
 
 /* 1 when all n numbers are finite. */
 int all_finite(const double *x, int64_t n);

@@ -43,13 +43,3 @@ int all_finite(const double *x, int64_t n)
         probe += x[i] * 0.0;
     return probe == 0.0;
 }
-
-int ray_check(const isect_ray *ray)
-{
-    if (!all_finite(ray->org, 3) || !all_finite(ray->dir, 3)
-        || isnan(ray->tmin) || isnan(ray->tmax))
-        return ISECT_E_NONFINITE;
-    if (ray->dir[0] == 0.0 && ray->dir[1] == 0.0 && ray->dir[2] == 0.0)
-        return ISECT_E_DEGENERATE;
-    return ISECT_OK;
-}
