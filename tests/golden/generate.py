@@ -27,6 +27,7 @@ import box  # noqa: E402
 import convex  # noqa: E402
 import cylinder  # noqa: E402
 import ellipsoid  # noqa: E402
+import mesh  # noqa: E402
 import plane  # noqa: E402
 import polygon  # noqa: E402
 import polygon2d  # noqa: E402
@@ -41,7 +42,7 @@ SCHEMA = "isect-cases/1"
 GENERATOR = "tests/golden/generate.py (mpmath, 80 digits)"
 CASES_DIR = HERE.parent / "cases"
 FAMILIES = [plane, sphere, box, triangle, polygon, convex, cylinder, ellipsoid, quadric, transformed,
-            polygon2d, bad_input]
+            polygon2d, mesh, bad_input]
 WIDTH = 150
 
 
@@ -135,6 +136,8 @@ def build(mod) -> tuple[str, str]:
             groups.append(g)
         try:
             c["expect"] = evaluate(c)
+            if hasattr(mod, "check_case"):
+                mod.check_case(c)
         except Exception as e:
             raise RuntimeError(f"{mod.FAMILY}: case {i} '{c['name']}': {e}") from e
         cases.append({"id": i + 1, **{k: c[k] for k in CASE_KEYS if k in c}})

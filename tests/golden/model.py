@@ -255,6 +255,26 @@ NOTES: dict[str, str] = {
     "neg-zero": "An input is -0.0, which compares equal to 0 (not negative).",
     "winding": "op winding_number2 (integer winding number, counter-clockwise +1).",
     "normal-op": "op polygon_normal or plane_from_points (Newell's method about the centroid).",
+    "polygon-faces": "A mesh with faces of more than 3 vertices, built through CSR offsets; those faces "
+                     "hit like polygons under the even-odd rule (Newell normal, uv 0).",
+    "mixed-faces": "A mesh mixing triangles and quads (CSR offsets): the 3-vertex faces still hit as "
+                   "triangles (barycentric uv).",
+    "parity": "A ray against a closed mesh from an origin off the surface over [0, inf): the "
+              "generator checks that the hit count is odd exactly when the origin is inside, by a "
+              "containment reference that shares nothing with the ray tests (exactly-once).",
+    "edge-graze": "The ray touches a closed mesh only along an edge or at a vertex without entering it: "
+                  "the faces there claim the crossing an even number of times (0 or 2).",
+    "genus": "A mesh with handles (torus: genus 1; a block with two holes: genus 2) made of coplanar "
+             "quads that share edges and vertices.",
+    "open-mesh": "A mesh with boundary edges (a cube with a face removed): rays hit the faces that are "
+                 "there; contains is ISECT_E_ARG.",
+    "misoriented": "One face has the opposite vertex order: its hits have the other kind; the report "
+                   "counts its edges as misoriented; containment still follows crossing parity.",
+    "components": "A mesh of two disjoint pieces.",
+    "nonmanifold": "Three faces share one edge: the report counts it; contains is ISECT_E_ARG.",
+    "empty-mesh": "A mesh with vertices but no faces: valid, never hit, an all-zero report.",
+    "report": "op mesh_check: the isect_mesh_report of the mesh; integer fields exact, volume and area "
+              "within tol.",
     "tiling": "One of a set of polygons tiling the plane around the query point: exactly one "
               "of the group contains it.",
 }

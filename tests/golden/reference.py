@@ -13,6 +13,7 @@ import box
 import convex
 import cylinder
 import ellipsoid
+import mesh
 import plane
 import polygon
 import polygon2d
@@ -29,12 +30,14 @@ SOLVERS: dict[str, Solver] = {
     "plane": plane.solve, "sphere": sphere.solve, "box": box.solve, "triangle": triangle.solve,
     "polygon": polygon.solve, "convex": convex.solve, "cylinder": cylinder.solve_finite,
     "infinite_cylinder": cylinder.solve_infinite, "ellipsoid": ellipsoid.solve, "quadric": quadric.solve,
+    "mesh": mesh.solve,
 }
 
 CONTAINS = {
     "sphere": sphere.contains, "box": box.contains, "convex": convex.contains,
     "cylinder": cylinder.contains_finite, "infinite_cylinder": cylinder.contains_infinite,
     "ellipsoid": ellipsoid.contains, "quadric": quadric.contains,
+    "mesh": mesh.contains,
 }
 
 #: the numeric keys of each shape, all of which must be finite
@@ -42,7 +45,7 @@ NUMBERS = {
     "plane": ("normal", "d"), "sphere": ("center", "radius"), "box": ("lo", "hi"),
     "triangle": ("a", "b", "c"), "polygon": ("vertices",), "convex": ("planes",),
     "cylinder": ("p0", "p1", "radius"), "infinite_cylinder": ("point", "axis", "radius"),
-    "ellipsoid": ("center", "radii"), "quadric": ("coeffs",),
+    "ellipsoid": ("center", "radii"), "quadric": ("coeffs",), "mesh": ("vertices",),
 }
 
 
@@ -50,6 +53,11 @@ def _flat(x: Any) -> list[float]:
     if isinstance(x, (list, tuple)):
         return [y for e in x for y in _flat(e)]
     return [x]
+
+
+def culls_back(shape: dict) -> bool:
+    """ISECT_CULL_BACK applies: thin surfaces and the faces of meshes."""
+    return is_thin(shape) or shape["type"] == "mesh"
 
 
 def is_thin(shape: dict) -> bool:
@@ -62,6 +70,8 @@ def shape_status(shape: dict) -> set[str]:
     t = shape["type"]
     if isinstance(t, int):
         return {"E_ARG"}        # 0 and 12+ are unknown; 11 (mesh) has no mesh here
+    if t == "mesh":
+        return mesh.status(shape)
     out: set[str] = set()
     if not all(math.isfinite(x) for k in NUMBERS[t] for x in _flat(shape[k])):
         out.add("E_NONFINITE")
@@ -115,11 +125,16 @@ def evaluate(c: dict) -> dict:
     if op in ("point_in_polygon2", "winding_number2", "polygon_normal", "plane_from_points"):
         return polygon2d.evaluate(c)
     shape = c["shape"]
+    if op == "mesh_check":
+        status = one_status(shape_status(shape), c["name"])
+        return {"status": status} if status else {"status": "ok", "report": mesh.report(shape)}
     if op == "contains":
         st = shape_status(shape)
         if not all(math.isfinite(x) for x in c["point"]):
             st.add("E_NONFINITE")
         if not isinstance(shape["type"], int) and is_thin(shape):
+            st.add("E_ARG")
+        if shape["type"] == "mesh" and not st and not mesh.is_closed(shape):
             st.add("E_ARG")
         status = one_status(st, c["name"])
         if status:
@@ -148,6 +163,6 @@ def evaluate(c: dict) -> dict:
     else:
         hits = solver(shape, r, ctx)
     cull = "cull_back" in (c.get("opts") or {}).get("flags", [])
-    kept = finish(hits, r, ctx, is_thin(shape), cull)
+    kept = finish(hits, r, ctx, culls_back(shape), cull)
     return {"status": "ok", "count": len(kept), "hits": [hit_json(h, r) for h in kept]}
 
