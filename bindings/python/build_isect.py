@@ -18,6 +18,7 @@ The sources are looked up in these places, first match wins:
 from __future__ import annotations
 
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -53,15 +54,56 @@ def compile_args() -> list[str]:
     return ["-ffp-contract=off", "-fvisibility=hidden", "-fno-fast-math"]
 
 
+#: macros of isect.h that are not constants of the API (include guard,
+#: visibility, a string, an initializer)
+_NOT_CONSTANTS = {"ISECT_H", "ISECT_API", "ISECT_VERSION_STRING", "ISECT_OPTS_INIT"}
+
+
+def cdef_from_header(header: str) -> str:
+    """isect.h in the dialect cffi's ``cdef()`` parses.
+
+    The header stays the one source of truth: comments and line continuations
+    go, integer macros become ``#define NAME ...`` (the C compiler supplies the
+    value), the floating-point ISECT_EPS_DEFAULT a ``static const double``,
+    preprocessor-conditional code (the ISECT_API selection, ``extern "C"``) is
+    dropped except inside the include guard, and ISECT_API is erased. Struct
+    fields are kept exactly, so cffi checks every offset and size against the
+    compiler's layout.
+    """
+    text = re.sub(r"/\*.*?\*/", " ", header, flags=re.S)
+    text = re.sub(r"//[^\n]*", "", text).replace("\\\n", " ")
+    out: list[str] = []
+    depth = 0                       # open #if blocks; the include guard is depth 1
+    for line in text.splitlines():
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            words = stripped[1:].split(None, 2)
+            directive = words[0] if words else ""
+            if directive in ("if", "ifdef", "ifndef"):
+                depth += 1
+            elif directive == "endif":
+                depth -= 1
+            elif directive == "define" and depth == 1 and words[1] not in _NOT_CONSTANTS:
+                value = words[2] if len(words) > 2 else ""
+                if re.fullmatch(r"[0-9.]+[eE][-+]?[0-9]+|[0-9]*\.[0-9]+", value.strip()):
+                    out.append(f"static const double {words[1]};")
+                else:
+                    out.append(f"#define {words[1]} ...")
+            continue
+        if depth <= 1:
+            out.append(re.sub(r"\bISECT_API\s+", "", line))
+    return "\n".join(out) + "\n"
+
+
 def make_ffibuilder() -> FFI:
-    """Create the FFI builder: cdef from isect_cdef.h, sources from libisect."""
+    """Create the FFI builder: cdef from isect.h, sources from libisect."""
     root = find_libisect()
     sources = sorted(str(p) for p in (root / "src").glob("*.c"))
     # Headers are listed so that a rebuild in a used tree (bindings/python/build
     # left by an earlier pip install) is triggered by a header change too.
-    headers = [root / "include" / "isect.h", HERE / "isect_cdef.h", *(root / "src").glob("*.h")]
+    headers = [root / "include" / "isect.h", *(root / "src").glob("*.h")]
     builder = FFI()
-    builder.cdef((HERE / "isect_cdef.h").read_text(encoding="utf-8"))
+    builder.cdef(cdef_from_header((root / "include" / "isect.h").read_text(encoding="utf-8")))
     builder.set_source(
         "isect._isect",
         '#include "isect.h"\n',

@@ -131,6 +131,158 @@ def test_malformed_case_is_named(
     assert out.strip().splitlines()[-1] == "0 passed, 1 failed"
 
 
+# A unit cube of quads (outward normals): its report is known by hand.
+CUBE = {
+    "type": "mesh",
+    "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                 [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]],
+    "faces": [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [0, 4, 7, 3], [1, 2, 6, 5]],
+}  # fmt: skip
+CUBE_REPORT = {
+    "vertices": 8, "edges": 12, "faces": 6, "boundary_edges": 0, "nonmanifold_edges": 0,
+    "misoriented_edges": 0, "degenerate_faces": 0, "components": 1, "euler_characteristic": 2,
+    "genus": 0, "closed": 1, "oriented": 1, "volume": 1.0, "area": 6.0,
+}  # fmt: skip
+
+
+def _mesh_cases(**changes: Any) -> dict[str, Any]:
+    """A cube pierced (intersect), probed (contains) and checked (mesh_check,
+    id 7, the case ``changes`` apply to, as in :func:`_one_case`)."""
+    mesh_check = {
+        "op": "mesh_check",
+        "shape": CUBE,
+        "ray": None,
+        "expect": {"status": "ok", "report": dict(CUBE_REPORT)},
+    }
+    doc = _one_case(**{**mesh_check, **changes})
+    doc["cases"] += [
+        {
+            "id": 1,
+            "shape": CUBE,
+            "ray": {"org": [0.5, 0.25, -1], "dir": [0, 0, 1]},
+            "expect": {"status": "ok", "count": 2, "hits": [
+                {"t": 1, "normal": [0, 0, -1], "prim": 0, "kind": "enter"},
+                {"t": 2, "normal": [0, 0, 1], "prim": 1, "kind": "exit"}]},
+        },
+        {"id": 2, "op": "contains", "shape": CUBE, "point": [0.5, 0.5, 0.5],
+         "expect": {"status": "ok", "inside": 1}},
+        {"id": 3, "op": "contains", "shape": CUBE, "point": [0.5, 0.5, 1.5],
+         "expect": {"status": "ok", "inside": 0}},
+    ]  # fmt: skip
+    return doc
+
+
+def test_mesh_cases_pass(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    rc, out = _run(capsys, "-v", str(_write(tmp_path, "mesh.json", _mesh_cases())))
+    assert rc == 0 and out.strip().splitlines()[-1] == "4 passed, 0 failed", out
+    assert "PASS" in out and "case 7 (my case)" in out
+
+
+@pytest.mark.parametrize(
+    ("shape", "status"),
+    [
+        ({**CUBE, "faces": [[0, 1, 8]]}, "E_ARG"),  # index out of range
+        ({**CUBE, "faces": [[0, -1, 2]]}, "E_ARG"),
+        ({**CUBE, "faces": [[0, 1, 2], [0, 1]]}, "E_ARG"),  # a face of 2 indices
+        ({**CUBE, "faces": [[0, 1, 2, 3], []]}, "E_ARG"),
+        ({**CUBE, "vertices": [[0, 0, "nan"], *CUBE["vertices"][1:]]}, "E_NONFINITE"),
+        ({**CUBE, "vertices": [[0, 0], *CUBE["vertices"][1:]]}, "E_ARG"),  # a vertex of 2
+    ],
+)
+def test_mesh_creation_error_is_the_status_whatever_the_op(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], shape: dict[str, Any], status: str
+) -> None:
+    cases = [
+        {"id": 1, "shape": shape, "ray": {"org": [0.5, 0.5, -1], "dir": [0, 0, 1]}},
+        {"id": 2, "shape": shape, "ray": {"org": [0.5, 0.5, -1], "dir": [0, 0, 0]}},
+        {"id": 3, "op": "contains", "shape": shape, "point": [0.5, 0.5, 0.5]},
+        {"id": 4, "op": "mesh_check", "shape": shape},
+    ]
+    for case in cases:
+        case["expect"] = {"status": status}
+    doc = {"schema": "isect-cases/1", "cases": cases}
+    rc, out = _run(capsys, str(_write(tmp_path, "mesh.json", doc)))
+    assert rc == 0 and out.strip() == "4 passed, 0 failed", out
+
+
+def test_open_mesh_contains_is_an_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    box = {**CUBE, "faces": CUBE["faces"][1:]}  # no bottom
+    doc = _one_case(op="contains", shape=box, ray=None, point=[0.5, 0.5, 0.5],
+                    expect={"status": "ok", "inside": 1})  # fmt: skip
+    rc, out = _run(capsys, str(_write(tmp_path, "open.json", doc)))
+    assert rc == 1 and "expected ok, actual E_ARG" in out, out
+    assert '"status": "E_ARG"' in out
+    doc["cases"][0]["expect"] = {"status": "E_ARG"}
+    rc, out = _run(capsys, str(_write(tmp_path, "open.json", doc)))
+    assert rc == 0, out
+
+
+def test_wrong_report_fails_and_names_the_fields(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    doc = _mesh_cases()
+    report = doc["cases"][0]["expect"]["report"]
+    report.update(genus=1, closed=0, volume=1.5)
+    report["area"] = 6 * (1 + 1e-13)  # within the default tolerance
+    rc, out = _run(capsys, "--json", str(_write(tmp_path, "mesh.json", doc)))
+    assert rc == 1
+    result = json.loads(out)
+    assert (result["passed"], result["failed"], result["malformed"]) == (3, 1, 0)
+    (fail,) = (r for r in result["results"] if r["status"] == "fail")
+    assert fail["id"] == 7
+    assert "report.genus: expected 1, actual 0" in fail["message"]
+    assert "report.closed: expected 0, actual 1" in fail["message"]
+    assert "report.volume: expected 1.5, actual 1.0" in fail["message"]
+    assert "area" not in fail["message"] and "vertices" not in fail["message"]
+    assert fail["actual"]["report"] == CUBE_REPORT
+    report.update(genus=0, closed=1, volume=1.0, area=6.01)
+    doc["cases"][0]["tol"] = {"area": 1e-2}  # tol.area applies to area
+    rc, out = _run(capsys, str(_write(tmp_path, "mesh.json", doc)))
+    assert rc == 0, out
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        ({"shape": {**CUBE, "faces": [0, 1, 2]}}, "shape.faces[0]"),  # not a list of lists
+        ({"shape": {**CUBE, "faces": "0 1 2"}}, "shape.faces"),
+        ({"shape": {**CUBE, "faces": [[0, 1, 2.5]]}}, "shape.faces[0][2]"),
+        ({"shape": {**CUBE, "faces": [[0, 1, True]]}}, "shape.faces[0][2]"),
+        ({"shape": {"type": "mesh", "faces": [[0, 1, 2]]}}, "shape.vertices"),
+        ({"shape": {**CUBE, "vertices": [[0, 0, "zero"]]}}, "shape.vertices[0][2]"),
+        ({"shape": {"type": "mesh", "vertices": [[0, 0, 0]]}}, "shape.faces"),
+        ({"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}}, "shape.type"),
+        ({"expect": {"status": "ok"}}, "expect.report"),
+        ({"expect": {"status": "ok", "report": [8, 12]}}, "expect.report"),
+        ({"expect": {"status": "ok", "report": {**CUBE_REPORT, "colour": 1}}},
+         "expect.report.colour"),
+        ({"expect": {"status": "ok", "report": {**CUBE_REPORT, "genus": None}}},
+         "expect.report.genus"),
+        ({"expect": {"status": "ok", "report": {**CUBE_REPORT, "edges": 12.0}}},
+         "expect.report.edges"),
+        ({"expect": {"status": "ok", "report": {**CUBE_REPORT, "closed": 2}}},
+         "expect.report.closed"),
+        ({"expect": {"status": "ok", "report": {**CUBE_REPORT, "area": "big"}}},
+         "expect.report.area"),
+        ({"expect": {"status": "ok", "report": {
+            k: v for k, v in CUBE_REPORT.items() if k != "components"}}},
+         "expect.report.components"),
+    ],
+)  # fmt: skip
+def test_malformed_mesh_case_is_named(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], changes: dict[str, Any], field: str
+) -> None:
+    """A bad mesh case: file, case and field named, the other cases still run."""
+    rc, out = _run(capsys, str(_write(tmp_path, "badmesh.json", _mesh_cases(**changes))))
+    assert rc == 1 and "Traceback" not in out
+    (line,) = (x for x in out.splitlines() if x.startswith("ERROR"))
+    assert "badmesh.json" in line and "case 7 (my case)" in line, line
+    assert f"field {field!r}" in line, line
+    assert out.strip().splitlines()[-1] == "3 passed, 1 failed"
+
+
 @pytest.mark.parametrize(
     ("text", "words"),
     [

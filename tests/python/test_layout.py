@@ -126,7 +126,7 @@ def test_cdef_covers_the_header() -> None:
     assert len(declared) > 20
     assert {"isect_mesh_create", "isect_mesh_destroy", "isect_mesh_check"} <= declared
     bound = {name for name in dir(lib) if name.startswith("isect_")}
-    assert not (declared - bound), f"isect.h functions not in isect_cdef.h: {sorted(declared - bound)}"
+    assert not (declared - bound), f"isect.h functions missing from the cdef: {sorted(declared - bound)}"
     assert not (bound - declared), f"bound but not in isect.h: {sorted(bound - declared)}"
 
 

@@ -7,8 +7,11 @@ project's tests run it: an ``intersect`` case through ``intersect_all`` (every
 hit, compared with the expectation within the case's tolerances), ``intersect``
 (the batch closest hit must equal the first hit bit for bit, or be a MISS) and
 ``intersect_all_batch`` (the same hits, bit for bit); an error case must raise
-the expected error from both the scalar and the batch call. Cases flagged
-``c-only`` cannot be expressed through the Python API and are skipped.
+the expected error from both the scalar and the batch call. A ``mesh`` shape is
+built with :class:`~isect.Mesh` (a creation error is the case's status, whatever
+the op); a ``mesh_check`` case compares every field of :meth:`Mesh.check`'s
+report. Cases flagged ``c-only`` cannot be expressed through the Python API and
+are skipped.
 
 A structural problem of a file or case (a missing key, a number that is not
 one, an unknown op, shape type, kind, status or flag) is a
@@ -18,6 +21,7 @@ one, an unknown op, shape type, kind, status or flag) is a
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import struct
@@ -34,6 +38,7 @@ from ._errors import (
     OutOfMemoryError,
 )
 from ._helpers import plane_from_points, point_in_polygon, polygon_normal, winding_number
+from ._mesh import Mesh, MeshReport
 from ._shape import Shape, Solid
 from ._shapes import (
     Box,
@@ -63,6 +68,7 @@ KIND_NAMES = {int(v): k for k, v in KINDS.items()}
 OPS = (
     "intersect",
     "contains",
+    "mesh_check",
     "point_in_polygon2",
     "winding_number2",
     "polygon_normal",
@@ -79,7 +85,14 @@ SHAPE_TYPES = (
     "infinite_cylinder",
     "ellipsoid",
     "quadric",
+    "mesh",
 )
+#: The fields of ``expect.report`` (``isect_mesh_report``): the measures are
+#: compared within tolerance, every other field exactly (``closed`` and
+#: ``oriented`` as 0 | 1).
+REPORT_FIELDS = tuple(f.name for f in dataclasses.fields(MeshReport))
+REPORT_MEASURES = ("volume", "area")
+REPORT_FLAGS = ("closed", "oriented")
 OPT_FLAGS = ("cull_back", "any_hit")
 
 
@@ -145,6 +158,22 @@ def _rule_value(value: Any, where: str) -> Any:
     return value
 
 
+def _faces(spec: dict[str, Any], where: str) -> list[list[int]]:
+    """A mesh's faces: a list of lists of integer vertex indices (passed as
+    they are, out-of-range and short faces included, for bad-input cases)."""
+    faces = need(spec, "faces", where)
+    path = f"{where}.faces"
+    if not isinstance(faces, list):
+        raise CaseFormatError(path, f"{faces!r} is not a list of faces (lists of vertex indices)")
+    for i, face in enumerate(faces):
+        if not isinstance(face, list):
+            raise CaseFormatError(f"{path}[{i}]", f"{face!r} is not a list of vertex indices")
+        for j, index in enumerate(face):
+            if not isinstance(index, int) or isinstance(index, bool):
+                raise CaseFormatError(f"{path}[{i}][{j}]", f"{index!r} is not an integer index")
+    return faces
+
+
 def build_shape(spec: dict[str, Any], where: str = "shape") -> Shape:
     """The Python shape for a case's ``shape`` object (constructor keys)."""
     kind = need(spec, "type", where)
@@ -164,6 +193,7 @@ def build_shape(spec: dict[str, Any], where: str = "shape") -> Shape:
         "infinite_cylinder": lambda: InfiniteCylinder(f("point"), f("axis"), f("radius")),
         "ellipsoid": lambda: Ellipsoid(f("center"), f("radii")),
         "quadric": lambda: Quadric(f("coeffs")),
+        "mesh": lambda: Mesh(f("vertices"), _faces(spec, where)),
     }
     if isinstance(kind, int) and not isinstance(kind, bool):
         raise CaseFormatError(
@@ -220,7 +250,7 @@ def close(actual: float, expected: float, tol: float) -> bool:
 
 def tolerances(case: dict[str, Any]) -> dict[str, float]:
     """The case's tolerances with the defaults filled in."""
-    tol = {key: DEFAULT_TOL for key in ("t", "point", "normal", "uv")}
+    tol = {key: DEFAULT_TOL for key in ("t", "point", "normal", "uv", *REPORT_MEASURES)}
     given = case.get("tol", {})
     if not isinstance(given, dict):
         raise CaseFormatError("tol", "expected a JSON object")
@@ -403,6 +433,8 @@ def _expect_error(status: str, call: Callable[[], Any], what: str) -> None:
         raise CaseFailure(f"{what}: expected {status}, actual {status_of(other)}: {other}") from None
     if isinstance(got, list):  # intersect_all
         actual: Any = {"status": "ok", "count": len(got), "hits": [_hit_dict(h) for h in got]}
+    elif isinstance(got, dict):  # an op's result
+        actual = {"status": "ok", **got}
     else:
         actual = {"status": "ok", "result": repr(got)}
     failure = CaseFailure(f"{what}: expected {status}, actual ok")
@@ -433,6 +465,16 @@ def _contains(case: dict[str, Any]) -> bool:
     return bool(shape.contains(num(need(case, "point"), "point")))
 
 
+def _mesh_check(case: dict[str, Any]) -> dict[str, Any]:
+    """``Mesh.check()`` as the corpus writes the report (flags as 0 | 1)."""
+    if need(need(case, "shape"), "type", "shape") != "mesh":
+        raise CaseFormatError("shape.type", "op 'mesh_check' needs a 'mesh' shape")
+    shape = case_shape(case)
+    assert isinstance(shape, Mesh)
+    report = dataclasses.asdict(shape.check())
+    return {"report": {k: int(v) if isinstance(v, bool) else v for k, v in report.items()}}
+
+
 def _rule(case: dict[str, Any]) -> Any:
     return _rule_value(case.get("rule", "evenodd"), "rule")
 
@@ -443,6 +485,7 @@ def _arg(case: dict[str, Any], key: str) -> Any:
 
 OP_CALLS: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
     "contains": lambda c: {"inside": int(_contains(c))},
+    "mesh_check": _mesh_check,
     "point_in_polygon2": lambda c: {
         "inside": int(point_in_polygon(_arg(c, "polygon"), _arg(c, "point"), rule=_rule(c)))
     },
@@ -452,6 +495,59 @@ OP_CALLS: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
     "polygon_normal": lambda c: {"normal": polygon_normal(_arg(c, "vertices")).tolist()},
     "plane_from_points": lambda c: {"plane": plane_from_points(_arg(c, "vertices")).tolist()},
 }
+
+
+def _report_mismatches(expect: Any, actual: dict[str, Any], tol: dict[str, float]) -> list[str]:
+    """The fields of a ``mesh_check`` report that differ from ``expect.report``
+    (every field must be given)."""
+    where = "expect.report"
+    if not isinstance(expect, dict):
+        raise CaseFormatError(where, "expected a JSON object")
+    unknown = sorted(set(expect) - set(REPORT_FIELDS))
+    if unknown:
+        raise CaseFormatError(
+            f"{where}.{unknown[0]}", f"unknown report field (one of {', '.join(REPORT_FIELDS)})"
+        )
+    wrong = []
+    for name in REPORT_FIELDS:
+        want, got = need(expect, name, where), actual[name]
+        if name in REPORT_MEASURES:
+            exp = num(want, f"{where}.{name}")
+            if not isinstance(exp, float):
+                raise CaseFormatError(f"{where}.{name}", f"{want!r} is not a number")
+            if not close(got, exp, tol[name]):
+                wrong.append(f"{name}: expected {exp!r}, actual {got!r}")
+            continue
+        if not isinstance(want, int) or (isinstance(want, bool) and name not in REPORT_FLAGS):
+            raise CaseFormatError(f"{where}.{name}", f"{want!r} is not an integer")
+        if name in REPORT_FLAGS and want not in (0, 1):
+            raise CaseFormatError(f"{where}.{name}", f"{want!r} is not 0 or 1")
+        if got != int(want):
+            wrong.append(f"{name}: expected {int(want)}, actual {got}")
+    return wrong
+
+
+def _compare(case: dict[str, Any], got: dict[str, Any]) -> None:
+    """An op's result against ``expect`` (the keys it gives; a report in full)."""
+    expect, tol = case["expect"], tolerances(case)
+    wrong: list[str] = []
+    for key, value in got.items():
+        if key == "report":
+            report = need(expect, "report", "expect")
+            wrong += [f"report.{w}" for w in _report_mismatches(report, value, tol)]
+        elif key not in expect:
+            continue
+        elif isinstance(value, list):
+            exp = num(expect[key], f"expect.{key}")
+            t = tol.get(key, tol["normal"])
+            if len(value) != len(exp) or not all(close(a, e, t) for a, e in zip(value, exp)):
+                wrong.append(f"{key}: expected {exp}, actual {value}")
+        elif value != expect[key]:
+            wrong.append(f"{key}: expected {expect[key]!r}, actual {value!r}")
+    if wrong:
+        failure = CaseFailure("; ".join(wrong))
+        failure.actual = {"status": "ok", **got}  # type: ignore[attr-defined]
+        raise failure
 
 
 def check_case(case: dict[str, Any]) -> dict[str, Any] | None:
@@ -487,22 +583,11 @@ def check_case(case: dict[str, Any]) -> dict[str, Any] | None:
     try:
         got = run(case)
     except IsectError as error:
-        raise CaseFailure(f"expected ok, actual {status_of(error)}: {error}") from None
-    tol = tolerances(case)
-    for key, value in got.items():
-        if key not in expect:
-            continue
-        if isinstance(value, list):
-            exp = num(expect[key], f"expect.{key}")
-            t = tol.get(key, tol["normal"])
-            if len(value) != len(exp) or not all(close(a, e, t) for a, e in zip(value, exp)):
-                failure = CaseFailure(f"{key}: expected {exp}, actual {value}")
-                failure.actual = {"status": "ok", **got}  # type: ignore[attr-defined]
-                raise failure
-        elif value != expect[key]:
-            failure = CaseFailure(f"{key}: expected {expect[key]!r}, actual {value!r}")
-            failure.actual = {"status": "ok", **got}  # type: ignore[attr-defined]
-            raise failure
+        failure = CaseFailure(f"expected ok, actual {status_of(error)}: {error}")
+        actual = {"status": status_of(error), "message": str(error)}
+        failure.actual = actual  # type: ignore[attr-defined]
+        raise failure from None
+    _compare(case, got)
     return {"status": "ok", **got}
 
 

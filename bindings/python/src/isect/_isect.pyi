@@ -1,7 +1,7 @@
 """Type stub of the compiled cffi extension ``isect._isect``.
 
 ``ffi`` is the cffi FFI instance; ``lib`` exposes the C functions and
-constants declared in ``bindings/python/isect_cdef.h`` (see ``isect.h``).
+constants of ``isect.h`` (the cdef is made from the header by build_isect.py).
 Only the package's own modules use them; they are not public API.
 """
 
