@@ -67,9 +67,10 @@ $(FB)/tests/layout_probe.o: tests/fortran/layout_probe.c libisect/include/isect.
 	$(CC) $(WARN) -O1 -Ilibisect/include -c $< -o $@
 
 # Every Fortran test links the module's archive and the build tree's shared
-# library; test_layout also the C probe of isect.h.
+# library (-lisect needs the unversioned link too); test_layout also the C
+# probe of isect.h.
 FORTRAN_TEST_DEPS := $(FB)/tests/test_report.o $(FB)/tests/test_report.mod \
-                     $(FORTRAN_LIB) $(FORTRAN_MOD) $(B)/$(SONAME)
+                     $(FORTRAN_LIB) $(FORTRAN_MOD) $(B)/$(SONAME) $(B)/libisect.so
 
 $(FB)/test_layout: tests/fortran/test_layout.f90 $(FB)/tests/layout_probe.o $(FORTRAN_TEST_DEPS)
 	$(FC) $(FWARN) $(FFLAGS) $(FTESTFLAGS) -I$(FB) -I$(FB)/tests -J$(FB)/tests $< -o $@ \
@@ -81,11 +82,12 @@ $(FB)/%: tests/fortran/%.f90 $(FORTRAN_TEST_DEPS)
 
 # The examples against the build tree (tests/install/test_installed.sh builds
 # them again against an installed tree, through pkg-config).
-$(B)/examples/c/%: examples/c/%.c $(B)/$(SONAME)
+$(B)/examples/c/%: examples/c/%.c $(B)/$(SONAME) $(B)/libisect.so
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include $< -o $@ -L$(B) -lisect \
 	    -Wl,-rpath,'$$ORIGIN/../..'
-$(B)/examples/fortran/%: examples/fortran/%.f90 $(FORTRAN_LIB) $(FORTRAN_MOD) $(B)/$(SONAME)
+$(B)/examples/fortran/%: examples/fortran/%.f90 $(FORTRAN_LIB) $(FORTRAN_MOD) $(B)/$(SONAME) \
+                          $(B)/libisect.so
 	@mkdir -p $(@D)
 	$(FC) $(FWARN) $(FFLAGS) -I$(FB) -J$(@D) $< -o $@ $(FORTRAN_LIB) -L$(B) -lisect \
 	    -Wl,-rpath,'$$ORIGIN/../..'

@@ -8,9 +8,12 @@
 ! goes through the same API paths as the C runner (tests/c/corpus_*.c), here
 ! through the module's interfaces:
 !   intersect  isect_intersect and the type's scalar function (for a
-!              transformed case: isect_xform_ray + scalar + isect_xform_hits),
-!              each with a large buffer, cap 0 and cap 1; untransformed, the
-!              two agree bit for bit; isect_intersect_batch and
+!              transformed case: isect_xform_ray + scalar + isect_xform_hits;
+!              a mesh has no scalar function, so a transformed mesh composes
+!              isect_intersect without the xform instead, and an untransformed
+!              one has only the first path), each with a large buffer, cap 0
+!              and cap 1; untransformed, the two agree bit for bit;
+!              isect_intersect_batch and
 !              isect_intersect_all_batch on 5 copies of the ray with a NaN
 !              origin in the middle one (closest hit = isect_intersect's first
 !              hit bit for bit, MISS / INVALID records, CSR offsets, a retry
@@ -18,13 +21,21 @@
 !              nothing written.
 !   contains, point_in_polygon2, winding_number2: the scalar call, and the
 !              batch call on 4 copies of the point with a NaN one.
+!   mesh_check isect_mesh_check: every isect_mesh_report field (the mesh as
+!              given: no transform).
 !   polygon_normal, plane_from_points: status and values.
+! A mesh shape is built first with isect_mesh_create (triangle layout when
+! every face has 3 indices, else CSR offsets; tests/cases/README.md,
+! "Meshes"; as the C runner, also for a raw type with "faces"); a creation
+! error is the case's result whatever the op. Then the op runs as for any
+! shape, with isect_shape%mesh set, and the mesh is destroyed.
 ! Values pass when |got - want| <= tol * max(1, |want|); an infinite want must
 ! be matched exactly. Each disagreement prints
 !     FAIL file:id name: what (expected X, got Y)
-! and the run ends with "N skipped" (cases the export marks skip, e.g.
-! meshes) and then the line "N passed, N failed" (N counting cases; a broken
-! file counts as one failed entry); exit status 1 if anything failed.
+! and the run ends with "N skipped" (cases the export marks skip: a shape
+! type or op newer than the export) and then the line "N passed, N failed"
+! (N counting cases; a broken file counts as one failed entry); exit status 1
+! if anything failed.
 program corpus_runner
     use, intrinsic :: iso_c_binding
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
@@ -48,7 +59,7 @@ program corpus_runner
     ! INT32_MIN, the winding of a non-finite point in batch output (as a
     ! 64-bit value: standard Fortran integers are symmetric about 0).
     integer(c_int64_t), parameter :: WINDING_INVALID = -2147483648_c_int64_t
-    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/1"
+    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/2"
 
     type :: expected_hit
         real(c_double) :: t = 0, point(3) = 0, normal(3) = 0, uv(2) = 0
@@ -75,8 +86,17 @@ program corpus_runner
         real(c_double), allocatable :: polygon(:, :)    ! (2, n)
         integer(c_int) :: rule = ISECT_EVEN_ODD
         real(c_double), allocatable :: vertices(:, :)   ! (3, n)
+        ! A mesh shape (lines mesh, mverts, mfaces, midx): the counts, the
+        ! vertices, each face's index count and the indices concatenated.
+        logical :: is_mesh = .false.
+        logical :: have_mverts = .false., have_mfaces = .false., have_midx = .false.
+        integer(c_int64_t) :: mesh_nv = 0, mesh_nf = 0
+        real(c_double), allocatable :: mesh_verts(:, :)       ! (3, nv)
+        integer(c_int64_t), allocatable :: mesh_sizes(:)      ! (nf)
+        integer(c_int32_t), allocatable :: mesh_idx(:)        ! (sum of the sizes)
         real(c_double) :: tol_t = 1.0e-12_c_double, tol_point = 1.0e-12_c_double
         real(c_double) :: tol_normal = 1.0e-12_c_double, tol_uv = 1.0e-12_c_double
+        real(c_double) :: tol_volume = 1.0e-12_c_double, tol_area = 1.0e-12_c_double
         integer(c_int) :: status = ISECT_OK
         integer :: count = 0
         logical :: listed = .false.
@@ -85,6 +105,8 @@ program corpus_runner
         integer :: inside = 0
         integer(c_int32_t) :: winding = 0
         real(c_double) :: normal(3) = 0, plane(4) = 0
+        logical :: has_report = .false.
+        type(isect_mesh_report) :: report                ! mesh_check's expected report
     end type corpus_case
 
     ! What every path of a case shares (set by transform_setup).
@@ -93,6 +115,11 @@ program corpus_runner
     type(isect_shape) :: shape
     type(c_ptr) :: opts_ptr
     logical :: transformed
+    ! The current case's mesh (from mesh_setup; destroyed by run_case).
+    type(c_ptr) :: mesh_handle = c_null_ptr
+    ! What the handle holds before isect_mesh_create: not NULL and not a
+    ! mesh, so a call that leaves it alone is told apart from one that sets it.
+    integer(c_int64_t), target :: mesh_unset = 0
 
     ! The report of the current case and the totals.
     character(len=:), allocatable :: current_file, case_label, case_name
@@ -406,6 +433,7 @@ contains
         integer(c_int) :: status
         shape = isect_shape(type=cc%shape_type, n=cc%shape_n, flags=cc%shape_flags)
         if (cc%has_data) shape%data = c_loc(cc%data)
+        if (cc%is_mesh) shape%mesh = mesh_handle
         opts_ptr = c_null_ptr
         if (cc%has_opts) opts_ptr = c_loc(cc%opts)
         transformed = .false.
@@ -444,19 +472,30 @@ contains
             name = "isect_ray_ellipsoid"
         case (ISECT_QUADRIC)
             name = "isect_ray_quadric"
+        case (ISECT_MESH)
+            name = "isect_intersect(xform NULL)"
         case default
             name = "(no scalar function)"
         end select
         if (transformed) name = "isect_xform_ray+" // name // "+isect_xform_hits"
     end function scalar_name
 
+    ! Whether the case has path 2 (see run_path): a type with a scalar
+    ! function, or a transformed named mesh (untransformed, a mesh's path 2
+    ! would repeat the isect_intersect call exactly). Raw types have none.
+    logical function has_object_space_path()
+        has_object_space_path = cc%named .and. (.not. cc%is_mesh .or. transformed)
+    end function has_object_space_path
+
     ! The named type's scalar function on the case's data, through the
-    ! module's C-form interfaces.
+    ! module's C-form interfaces; for a mesh, isect_intersect on the shape
+    ! without its xform.
     function scalar_call(ray, hits, cap) result(nhits)
         type(isect_ray), intent(in) :: ray
         type(isect_hit), intent(inout) :: hits(:)
         integer(c_int), intent(in) :: cap
         integer(c_int) :: nhits
+        type(isect_shape) :: plain
         associate (d => cc%data, n => cc%shape_n)
             select case (cc%shape_type)
             case (ISECT_PLANE)
@@ -481,6 +520,10 @@ contains
                 nhits = isect_ray_ellipsoid(ray, d(1:3), d(4:6), opts_ptr, hits, cap)
             case (ISECT_QUADRIC)
                 nhits = isect_ray_quadric(ray, d(1:10), opts_ptr, hits, cap)
+            case (ISECT_MESH)
+                plain = shape
+                plain%xform = c_null_ptr
+                nhits = isect_intersect(plain, ray, opts_ptr, hits, cap)
             case default
                 nhits = ISECT_E_ARG   ! only named types get here; each has a case
             end select
@@ -488,8 +531,9 @@ contains
     end function scalar_call
 
     ! One way of computing the case's hits (path 1: isect_intersect; path 2:
-    ! the scalar function, composed with the transform by hand), with the
-    ! contract of isect_intersect.
+    ! the scalar function, or for a mesh isect_intersect without the xform,
+    ! composed with the transform by hand), with the contract of
+    ! isect_intersect.
     function run_path(path_id, hits, cap) result(nhits)
         integer, intent(in) :: path_id
         type(isect_hit), intent(inout) :: hits(:)
@@ -583,12 +627,12 @@ contains
         if (.not. transform_setup()) return
         if (cc%status /= ISECT_OK) then
             call check_path_error("isect_intersect", 1)
-            if (cc%named) call check_path_error(scalar_name(), 2)
+            if (has_object_space_path()) call check_path_error(scalar_name(), 2)
             call check_batch_error()
             return
         end if
         ref_count = check_path_ok("isect_intersect", 1, reference)
-        if (cc%named) then
+        if (has_object_space_path()) then
             scalar_count = check_path_ok(scalar_name(), 2, scalar_hits)
             ! Untransformed, isect_intersect is documented to give the
             ! scalar function's hits: every bit agrees.
@@ -972,6 +1016,118 @@ contains
             call report_near("isect_plane_from_points: plane", plane, cc%plane, cc%tol_normal)
     end subroutine check_plane_from_points_case
 
+    ! ============================================================ meshes
+
+    ! Build the case's mesh into mesh_handle as tests/cases/README.md
+    ! ("Meshes") says: offsets NULL when every face has exactly 3 indices
+    ! (an empty face list included), else CSR offsets from the face sizes.
+    ! A creation error is the case's result whatever the op: it is checked
+    ! (and that the handle is NULL) and .false. returned (the case is done).
+    logical function mesh_setup()
+        integer(c_int64_t), allocatable, target :: offsets(:)
+        type(c_ptr) :: offsets_ptr
+        integer(c_int) :: status
+        integer(c_int64_t) :: f, bytes
+
+        offsets_ptr = c_null_ptr
+        if (any(cc%mesh_sizes /= 3)) then
+            allocate (offsets(cc%mesh_nf + 1))
+            offsets(1) = 0
+            do f = 1, cc%mesh_nf
+                offsets(f + 1) = offsets(f) + cc%mesh_sizes(f)
+            end do
+            offsets_ptr = c_loc(offsets)
+        end if
+        ! The C form with explicit counts (the Fortran form would also fail
+        ! some bad inputs itself, before the library sees them).
+        mesh_handle = c_loc(mesh_unset)
+        status = isect_mesh_create(cc%mesh_verts, cc%mesh_nv, cc%mesh_idx, offsets_ptr, &
+                                   cc%mesh_nf, mesh_handle)
+        if (status /= ISECT_OK) then
+            call report_status("isect_mesh_create", int(status, c_int64_t), cc%status)
+            if (c_associated(mesh_handle)) &
+                call fail("isect_mesh_create: handle after an error (expected NULL, got " // &
+                          trim(merge("it left unset", "a pointer    ", &
+                                     c_associated(mesh_handle, c_loc(mesh_unset)))) // ")")
+            ! Never destroyed: after an error the handle is no mesh of ours.
+            mesh_handle = c_null_ptr
+            mesh_setup = .false.
+            return
+        end if
+        if (.not. c_associated(mesh_handle) .or. c_associated(mesh_handle, c_loc(mesh_unset))) &
+            then
+            call fail("isect_mesh_create: ok, but the handle (expected a mesh, got " // &
+                      trim(merge("NULL         ", "it left unset", &
+                                 .not. c_associated(mesh_handle))) // ")")
+            mesh_handle = c_null_ptr
+            mesh_setup = .false.
+            return
+        end if
+        mesh_setup = .true.
+        bytes = isect_mesh_bytes(mesh_handle)
+        if (bytes <= 0) call fail("isect_mesh_bytes (expected > 0, got " // itoa(bytes) // ")")
+    end function mesh_setup
+
+    ! isect_mesh_check on the case's mesh as given (a mesh_check case has
+    ! no transform): the integer fields exactly, volume and area within
+    ! tol.volume and tol.area.
+    subroutine check_mesh_check_case()
+        type(isect_mesh_report) :: got
+        integer(c_int) :: status
+        logical :: ok
+        character(len=*), parameter :: name = "isect_mesh_check"
+
+        status = isect_mesh_check(mesh_handle, got)
+        ok = .true.
+        call report_status(name, int(status, c_int64_t), cc%status, ok)
+        if (.not. ok .or. status /= ISECT_OK) return
+        associate (want => cc%report)
+            call report_int(name // ": vertices", got%vertices, want%vertices)
+            call report_int(name // ": edges", got%edges, want%edges)
+            call report_int(name // ": faces", got%faces, want%faces)
+            call report_int(name // ": boundary_edges", got%boundary_edges, &
+                            want%boundary_edges)
+            call report_int(name // ": nonmanifold_edges", got%nonmanifold_edges, &
+                            want%nonmanifold_edges)
+            call report_int(name // ": misoriented_edges", got%misoriented_edges, &
+                            want%misoriented_edges)
+            call report_int(name // ": degenerate_faces", got%degenerate_faces, &
+                            want%degenerate_faces)
+            call report_int(name // ": components", got%components, want%components)
+            call report_int(name // ": euler_characteristic", got%euler_characteristic, &
+                            want%euler_characteristic)
+            call report_int(name // ": genus", got%genus, want%genus)
+            call report_int(name // ": closed", int(got%closed, c_int64_t), &
+                            int(want%closed, c_int64_t))
+            call report_int(name // ": oriented", int(got%oriented, c_int64_t), &
+                            int(want%oriented, c_int64_t))
+            call report_near(name // ": volume", [got%volume], [want%volume], cc%tol_volume)
+            call report_near(name // ": area", [got%area], [want%area], cc%tol_area)
+        end associate
+    end subroutine check_mesh_check_case
+
+    ! The case's op on what the case block gave (a mesh already built).
+    subroutine run_op()
+        select case (cc%op)
+        case ("intersect")
+            call check_intersect_case()
+        case ("contains")
+            call check_contains_case()
+        case ("mesh_check")
+            call check_mesh_check_case()
+        case ("point_in_polygon2")
+            call check_point_in_polygon2_case()
+        case ("winding_number2")
+            call check_winding_number2_case()
+        case ("polygon_normal")
+            call check_polygon_normal_case()
+        case ("plane_from_points")
+            call check_plane_from_points_case()
+        case default
+            call fail("unknown op " // cc%op)
+        end select
+    end subroutine run_op
+
     subroutine run_case()
         call begin_case(cc%label, cc%name)
         if (cc%skipped) then
@@ -982,23 +1138,22 @@ contains
         end if
         if (cc%malformed) then
             call fail("malformed case: " // cc%problem)
+        else if (cc%is_mesh .and. .not. (cc%have_mverts .and. cc%have_mfaces .and. &
+                                         cc%have_midx)) then
+            call fail("malformed case: a mesh line (mverts, mfaces, midx) is missing")
+        else if (cc%op == "mesh_check" .and. .not. cc%is_mesh) then
+            call fail("malformed case: mesh_check without a mesh shape")
+        else if (cc%op == "mesh_check" .and. cc%status == ISECT_OK .and. &
+                 .not. cc%has_report) then
+            call fail("malformed case: mesh_check expecting ok without a report line")
+        else if (cc%is_mesh) then
+            ! A creation error is the case's result (checked by mesh_setup).
+            if (mesh_setup()) call run_op()
+            ! NULL after a failed creation: a no-op.
+            call isect_mesh_destroy(mesh_handle)
+            mesh_handle = c_null_ptr
         else
-            select case (cc%op)
-            case ("intersect")
-                call check_intersect_case()
-            case ("contains")
-                call check_contains_case()
-            case ("point_in_polygon2")
-                call check_point_in_polygon2_case()
-            case ("winding_number2")
-                call check_winding_number2_case()
-            case ("polygon_normal")
-                call check_polygon_normal_case()
-            case ("plane_from_points")
-                call check_plane_from_points_case()
-            case default
-                call fail("unknown op " // cc%op)
-            end select
+            call run_op()
         end if
         call end_case()
     end subroutine run_case
@@ -1006,22 +1161,34 @@ contains
     ! ============================================================ reading
 
     ! One line of any length (without its newline); ios < 0 at the end.
+    ! A mesh's lines hold all its numbers (megabytes for a large mesh), so
+    ! the buffer grows by doubling (appending to the line itself would copy
+    ! it once per chunk), and chunks are large: libgfortran moves the rest of
+    ! a long record in its buffer on every non-advancing read (a 2.4 MB line
+    ! took 4 s in 4 KiB chunks, 0.2 s in 64 KiB ones; 64 KiB is gfortran's
+    ! limit for a local on the stack).
     subroutine read_line(unit, line, ios)
         integer, intent(in) :: unit
         character(len=:), allocatable, intent(out) :: line
         integer, intent(out) :: ios
-        character(len=1024) :: chunk
-        integer :: got
-        line = ""
+        character(len=65536) :: chunk
+        character(len=:), allocatable :: buffer
+        integer :: got, used
+        buffer = repeat(" ", len(chunk))
+        used = 0
         do
             read (unit, '(a)', advance='no', iostat=ios, size=got) chunk
-            line = line // chunk(1:got)
+            if (used + got > len(buffer)) &
+                buffer = buffer(1:used) // repeat(" ", len(buffer) + got)
+            buffer(used + 1:used + got) = chunk(1:got)
+            used = used + got
             if (is_iostat_eor(ios)) then
                 ios = 0
-                return
+                exit
             end if
-            if (ios /= 0) return
+            if (ios /= 0) exit
         end do
+        line = buffer(1:used)
     end subroutine read_line
 
     ! The values after the key, read list-directed (Inf, -Inf and NaN
@@ -1063,7 +1230,7 @@ contains
     logical function apply_line(key, rest)
         character(len=*), intent(in) :: key, rest
         real(c_double) :: values(12)
-        integer(c_int64_t) :: ints(6)
+        integer(c_int64_t) :: ints(12)
         integer :: k
 
         apply_line = .true.
@@ -1097,6 +1264,52 @@ contains
         case ("data")
             apply_line = allocated(cc%data)
             if (apply_line) apply_line = read_reals(rest, cc%data(1:cc%ndata))
+        case ("mesh")
+            ! The counts size the arrays the next three lines fill (a line
+            ! with no values when its count is 0).
+            apply_line = read_ints(rest, ints(1:2))
+            if (.not. apply_line .or. any(ints(1:2) < 0) .or. cc%is_mesh) then
+                apply_line = .false.
+                return
+            end if
+            cc%is_mesh = .true.
+            cc%mesh_nv = ints(1)
+            cc%mesh_nf = ints(2)
+            allocate (cc%mesh_verts(3, cc%mesh_nv), cc%mesh_sizes(cc%mesh_nf))
+        case ("mverts")
+            apply_line = cc%is_mesh .and. .not. cc%have_mverts
+            if (.not. apply_line) return
+            if (cc%mesh_nv == 0) then
+                apply_line = len_trim(rest) == 0
+            else
+                read (rest, *, iostat=k) cc%mesh_verts
+                apply_line = k == 0
+            end if
+            cc%have_mverts = .true.
+        case ("mfaces")
+            apply_line = cc%is_mesh .and. .not. cc%have_mfaces
+            if (.not. apply_line) return
+            if (cc%mesh_nf == 0) then
+                apply_line = len_trim(rest) == 0
+            else
+                read (rest, *, iostat=k) cc%mesh_sizes
+                apply_line = k == 0
+                if (apply_line) apply_line = all(cc%mesh_sizes >= 0)
+            end if
+            if (.not. apply_line) return
+            allocate (cc%mesh_idx(sum(cc%mesh_sizes)))
+            cc%have_mfaces = .true.
+        case ("midx")
+            ! After mfaces, which sizes it.
+            apply_line = cc%have_mfaces .and. .not. cc%have_midx
+            if (.not. apply_line) return
+            if (size(cc%mesh_idx) == 0) then
+                apply_line = len_trim(rest) == 0
+            else
+                read (rest, *, iostat=k) cc%mesh_idx
+                apply_line = k == 0
+            end if
+            cc%have_midx = .true.
         case ("transform")
             apply_line = read_reals(rest, cc%transform)
             cc%has_transform = .true.
@@ -1125,11 +1338,13 @@ contains
             apply_line = read_ints(rest, ints(1:1))
             cc%rule = int(ints(1), c_int)
         case ("tol")
-            apply_line = read_reals(rest, values(1:4))
+            apply_line = read_reals(rest, values(1:6))
             cc%tol_t = values(1)
             cc%tol_point = values(2)
             cc%tol_normal = values(3)
             cc%tol_uv = values(4)
+            cc%tol_volume = values(5)
+            cc%tol_area = values(6)
         case ("status")
             apply_line = read_ints(rest, ints(1:1))
             cc%status = int(ints(1), c_int)
@@ -1162,6 +1377,18 @@ contains
             apply_line = read_reals(rest, cc%normal)
         case ("plane")
             apply_line = read_reals(rest, cc%plane)
+        case ("report")
+            ! The struct's order: 12 integers, then volume and area.
+            read (rest, *, iostat=k) ints(1:12), values(1:2)
+            apply_line = k == 0
+            if (.not. apply_line) return
+            cc%has_report = .true.
+            cc%report = isect_mesh_report(vertices=ints(1), edges=ints(2), faces=ints(3), &
+                boundary_edges=ints(4), nonmanifold_edges=ints(5), &
+                misoriented_edges=ints(6), degenerate_faces=ints(7), components=ints(8), &
+                euler_characteristic=ints(9), genus=ints(10), &
+                closed=int(ints(11), c_int32_t), oriented=int(ints(12), c_int32_t), &
+                volume=values(1), area=values(2))
         case default
             apply_line = .false.
         end select

@@ -3,6 +3,8 @@
 
     python3 tests/golden/export_flat.py           # write tests/cases/flat/<family>.txt
     python3 tests/golden/export_flat.py --check   # exit 1 if those files are out of date
+    python3 tests/golden/export_flat.py --export CASES.json OUT.txt
+                                                  # one file (e.g. a scratch JSON)
 
 Fortran should not parse JSON, so each tests/cases/<family>.json becomes
 tests/cases/flat/<family>.txt, which tests/fortran/corpus_runner.f90 reads. The
@@ -10,46 +12,69 @@ JSON stays the source of truth; the flat files are committed so a Fortran-only
 runner needs no Python, and `--check` (run by the tests) fails when they no
 longer match the JSON. Pure Python 3 (no packages).
 
-Flat format `isect-flat/1`
+Flat format `isect-flat/2`
 --------------------------
 Line-oriented text. Each line is a key and its values separated by single
-spaces; a line starting with `#` is a comment. A file is
+spaces; a line starting with `#` is a comment. Lines have no length limit
+(the runner reads them in chunks; a mesh's lines hold all its numbers). A file is
 
     # comment lines
-    format isect-flat/1
+    format isect-flat/2
     family <family>
     cases <number of case blocks that follow>
     case ... end      (one block per case, in the JSON's order)
 
 A case block, in this order (lines in brackets appear only when they apply):
 
-    case <id> <op>                 op: intersect | contains | point_in_polygon2 |
-                                   winding_number2 | polygon_normal | plane_from_points
+    case <id> <op>                 op: intersect | contains | mesh_check |
+                                   point_in_polygon2 | winding_number2 |
+                                   polygon_normal | plane_from_points
     name <text to the end of the line>
     [flags <flag> ...]             the case's flags (informational)
     [malformed <reason>]           the JSON case breaks the schema: a failure
-    [skip <reason>]                a case this runner does not run yet (a mesh shape,
-                                   an op added after this export): skipped
+    [skip <reason>]                a case this runner does not run yet (a shape
+                                   type or op added after this export): skipped
     [shape <type> <n> <flags> <named> <has_data> <ndata>]
-                                   intersect / contains: isect_shape fields as
-                                   integers (type: ISECT_* value, possibly a raw
-                                   bad-input value); named = 1 when the JSON names
-                                   the type (it has a scalar function); has_data = 0
-                                   when a raw type carries no known keys (data is
-                                   NULL); ndata = number of doubles that follow
+                                   intersect / contains / mesh_check: isect_shape
+                                   fields as integers (type: ISECT_* value, possibly
+                                   a raw bad-input value); named = 1 when the JSON
+                                   names the type (then it has a scalar function,
+                                   except a mesh); has_data = 0 when data is NULL (a
+                                   raw type with no known keys, a mesh); ndata =
+                                   number of doubles that follow. A mesh (type
+                                   "mesh", or a raw type with "faces", as the C
+                                   runner reads it) is `shape <type> 0 0 <named> 0 0`
+                                   followed by its four mesh lines:
+    [mesh <nv> <nf>]               vertex and face counts
+    [mverts <x1> <y1> <z1> ... <x_nv> <y_nv> <z_nv>]
+                                   the vertices (no values when nv = 0)
+    [mfaces <size_1> ... <size_nf>]
+                                   each face's index count (none when nf = 0)
+    [midx <i1> ... <i_total>]      the faces' 0-based indices concatenated
+                                   (total = sum of the sizes; none when 0), each
+                                   an int32; an index with no int32 form (not an
+                                   integer, out of range) is written as -1, which
+                                   no mesh accepts, as the C runner passes it. The
+                                   runner calls isect_mesh_create
+                                   with offsets NULL and idx as given when every
+                                   size is 3 (also when nf = 0), else with CSR
+                                   offsets 0, size_1, size_1 + size_2, ...
+                                   (tests/cases/README.md, "Meshes"); a creation
+                                   error is the case's result, whatever the op
     [data <x1> ... <x_ndata>]      the shape's numbers, in the order of its scalar
                                    function's arguments. A runner pads them with
                                    zeros (max(ndata, 4n) + 16 doubles, as the C
                                    runner does): a raw type may name a type whose
                                    function reads more numbers than were given
-    [transform <m1> ... <m16>]     row-major object-to-world matrix
+    [transform <m1> ... <m16>]     row-major object-to-world matrix (intersect,
+                                   contains; mesh_check reports the mesh as given)
     [ray <ox> <oy> <oz> <dx> <dy> <dz> <tmin> <tmax>]            intersect
     [opts <flags> <eps>]           intersect; absent: pass NULL (the defaults)
     [point <k> <x1> ... <xk>]      contains (k = 3), 2D ops (k = 2)
     [polygon <n> <x1> <y1> ... <xn> <yn>]                        2D ops
     [rule <r>]                     point_in_polygon2 (integer, passed through)
     [vertices <n> <x1> <y1> <z1> ... ]       polygon_normal / plane_from_points
-    tol <t> <point> <normal> <uv>
+    tol <t> <point> <normal> <uv> <volume> <area>
     status <s>                     expected status (ISECT_OK or ISECT_E_*), integer
     [count <c> <listed>]           intersect, status ok: hit count; listed = 1 when
                                    the hit lines follow (else only the count is checked)
@@ -60,7 +85,18 @@ A case block, in this order (lines in brackets appear only when they apply):
     [winding <w>]                  winding_number2, status ok
     [normal <x> <y> <z>]           polygon_normal, status ok
     [plane <a> <b> <c> <d>]        plane_from_points, status ok
+    [report <vertices> <edges> <faces> <boundary_edges> <nonmanifold_edges>
+            <misoriented_edges> <degenerate_faces> <components>
+            <euler_characteristic> <genus> <closed> <oriented> <volume> <area>]
+                                   mesh_check, status ok: the isect_mesh_report
+                                   fields in the struct's order (12 integers, then
+                                   2 doubles), on one line; closed and oriented
+                                   are 0 or 1, the counts within +-2^53
     end
+
+Version 2 (meshes) added the mesh lines, `report`, the op mesh_check and the
+volume and area tolerances of `tol`; a version-1 runner rejects a version-2 file
+at its `format` line instead of misreading it.
 
 Numbers: every double is written as Python's repr() of the exact double (the
 shortest decimal that reads back as the same double; hex-float strings of the
@@ -80,8 +116,22 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-FORMAT = "isect-flat/1"
+FORMAT = "isect-flat/2"
 DEFAULT_TOLERANCE = 1e-12
+# The tolerances of `tol`, in the order of the flat `tol` line.
+TOLERANCE_KEYS = ("t", "point", "normal", "uv", "volume", "area")
+# The isect_mesh_report fields of a mesh_check `report`, in the struct's (and
+# the flat `report` line's) order: the integers, then the doubles.
+REPORT_INTEGERS = ("vertices", "edges", "faces", "boundary_edges", "nonmanifold_edges",
+                   "misoriented_edges", "degenerate_faces", "components",
+                   "euler_characteristic", "genus", "closed", "oriented")
+REPORT_DOUBLES = ("volume", "area")
+INT32_MIN, INT32_MAX = -2**31, 2**31 - 1
+# A mesh index with no int32 form is passed as this (as the C runner does):
+# no mesh accepts it, so the library still reports the case's E_ARG.
+NOT_AN_INDEX = -1
+# Report counts: where a JSON number (a double) holds an integer exactly.
+MAX_EXACT_COUNT = 2**53
 
 
 class Malformed(Exception):
@@ -140,6 +190,7 @@ class Codes:
         ]
         self.polygon = c["ISECT_POLYGON"]
         self.cylinder = c["ISECT_CYLINDER"]
+        self.mesh = c["ISECT_MESH"]
 
 
 # ------------------------------------------------------------- values
@@ -195,6 +246,12 @@ def one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
+def line(key: str, values) -> str:
+    """`key v1 v2 ...`, or just `key` when there are no values (no trailing
+    space)."""
+    return " ".join([key, *values])
+
+
 # -------------------------------------------------------------- cases
 def rule_value(obj: dict, key: str, codes: Codes, where: str) -> int:
     if key not in obj:
@@ -221,6 +278,12 @@ def shape_lines(shape, codes: Codes) -> list[str]:
     if not isinstance(shape, dict) or "type" not in shape:
         raise Malformed("shape: an object with a type is required")
     kind = shape["type"]
+    if is_mesh(shape):
+        # Before the layouts (a mesh's "vertices" would pass for a
+        # polygon's), as tests/c/corpus_shape.c does.
+        if kind == "mesh":
+            return mesh_lines(shape, codes.mesh, 1)
+        return mesh_lines(shape, integer(kind, "shape.type"), 0)
     if isinstance(kind, str):
         matches = [lay for lay in codes.layouts if lay[0] == kind]
         if not matches:
@@ -258,16 +321,59 @@ def shape_lines(shape, codes: Codes) -> list[str]:
     return lines
 
 
-OPS = ("intersect", "contains", "point_in_polygon2", "winding_number2",
+def is_mesh(shape) -> bool:
+    """A mesh shape: type "mesh", or a raw (integer) type with "faces"
+    (bad-input cases), as the C runner reads them."""
+    if not isinstance(shape, dict) or "type" not in shape:
+        return False
+    kind = shape["type"]
+    return kind == "mesh" or (not isinstance(kind, str) and "faces" in shape)
+
+
+def mesh_index(value, where: str) -> int:
+    """An index as the int32 isect_mesh_create takes: a corpus number that is
+    an integer in int32 range as it is, however wrong for the mesh; any other
+    number NOT_AN_INDEX (tests/c/corpus_mesh.c does the same)."""
+    x = number(value, where)
+    if math.isfinite(x) and x == int(x) and INT32_MIN <= int(x) <= INT32_MAX:
+        return int(x)
+    return NOT_AN_INDEX
+
+
+def mesh_lines(shape: dict, type_value: int, named: int) -> list[str]:
+    """`shape` (data NULL, n and flags 0: the runner sets isect_shape.mesh) and
+    the four mesh lines. Face sizes are passed as they are (a face of fewer than
+    3 indices is a creation error the runner must see)."""
+    vertices = rows(shape.get("vertices"), 3, "shape.vertices")
+    faces = shape.get("faces")
+    if not isinstance(faces, list):
+        raise Malformed("shape.faces: expected a list of index lists")
+    indices: list[int] = []
+    for f, face in enumerate(faces):
+        if not isinstance(face, list):
+            raise Malformed(f"shape.faces[{f}]: expected a list of indices")
+        indices += [mesh_index(index, f"shape.faces[{f}][{k}]")
+                    for k, index in enumerate(face)]
+    return [f"shape {type_value} 0 0 {named} 0 0",
+            f"mesh {len(vertices)} {len(faces)}",
+            line("mverts", (fmt(x) for row in vertices for x in row)),
+            line("mfaces", (str(len(face)) for face in faces)),
+            line("midx", (str(i) for i in indices))]
+
+
+OPS = ("intersect", "contains", "mesh_check", "point_in_polygon2", "winding_number2",
        "polygon_normal", "plane_from_points")
 
 
 def case_body(case: dict, op: str, codes: Codes) -> list[str]:
     """The lines between `name`/`flags` and `end`."""
     out: list[str] = []
-    if op in ("intersect", "contains"):
+    if op in ("intersect", "contains", "mesh_check"):
+        if op == "mesh_check" and not is_mesh(case.get("shape")):
+            raise Malformed("mesh_check: the shape must be a mesh")
         out += shape_lines(case.get("shape"), codes)
-        if "transform" in case:
+        # mesh_check has no transform: the report describes the mesh as given.
+        if "transform" in case and op != "mesh_check":
             out.append("transform " + fmts(vector(case["transform"], 16, "transform")))
     if op == "intersect":
         ray = case.get("ray")
@@ -293,6 +399,8 @@ def case_body(case: dict, op: str, codes: Codes) -> list[str]:
             out.append(f"opts {flags} {fmt(eps)}")
     elif op == "contains":
         out.append("point 3 " + fmts(vector(case.get("point"), 3, "point")))
+    elif op == "mesh_check":
+        pass                            # the mesh is all its input
     elif op in ("point_in_polygon2", "winding_number2"):
         polygon = rows(case.get("polygon"), 2, "polygon")
         out.append("point 2 " + fmts(vector(case.get("point"), 2, "point")))
@@ -307,7 +415,7 @@ def case_body(case: dict, op: str, codes: Codes) -> list[str]:
     if not isinstance(tol, dict):
         raise Malformed("tol: an object is required")
     out.append("tol " + fmts(number(tol.get(k, DEFAULT_TOLERANCE), f"tol.{k}")
-                             for k in ("t", "point", "normal", "uv")))
+                             for k in TOLERANCE_KEYS))
     out += expect_lines(case.get("expect"), op, codes)
     return out
 
@@ -340,6 +448,22 @@ def expect_lines(expect, op: str, codes: Codes) -> list[str]:
         out.append(f"inside {integer(expect.get('inside'), 'expect.inside')}")
     elif op == "winding_number2":
         out.append(f"winding {integer(expect.get('winding'), 'expect.winding')}")
+    elif op == "mesh_check":
+        report = expect.get("report")
+        if not isinstance(report, dict):
+            raise Malformed("expect.report: an object is required")
+        missing = [k for k in REPORT_INTEGERS + REPORT_DOUBLES if k not in report]
+        if missing:
+            raise Malformed("expect.report: missing " + ", ".join(missing))
+        counts = [integer(report[k], f"expect.report.{k}") for k in REPORT_INTEGERS]
+        for k, value in zip(REPORT_INTEGERS, counts):
+            limit = 1 if k in ("closed", "oriented") else MAX_EXACT_COUNT
+            low = 0 if k in ("closed", "oriented") else -MAX_EXACT_COUNT
+            if not low <= value <= limit:
+                raise Malformed(f"expect.report.{k}: {value} is outside [{low}, {limit}]")
+        out.append(line("report", [str(v) for v in counts]
+                        + [fmt(number(report[k], f"expect.report.{k}"))
+                           for k in REPORT_DOUBLES]))
     elif op == "polygon_normal":
         out.append("normal " + fmts(vector(expect.get("normal"), 3, "expect.normal")))
     else:
@@ -362,7 +486,7 @@ def case_block(case, index: int, codes: Codes) -> list[str]:
         head.append("flags " + " ".join(one_line(f).replace(" ", "_") for f in flags))
     try:
         if op not in OPS:
-            # A later schema's op (meshes): the C runner knows it, this one not yet.
+            # A later schema's op: the C runner may know it, this one not yet.
             raise SkipCase(f"op {op!r} is not run by this runner")
         body = case_body(case, op, codes)
     except Malformed as e:
@@ -376,7 +500,13 @@ def export(json_path: Path, codes: Codes) -> str:
     doc = json.loads(json_path.read_text())
     cases = doc.get("cases", []) if isinstance(doc, dict) else []
     family = doc.get("family", json_path.stem) if isinstance(doc, dict) else json_path.stem
-    lines = [f"# Generated by tests/golden/export_flat.py from tests/cases/{json_path.name}"
+    # The source as a repository path (tests/cases/<family>.json), or as given
+    # for a file elsewhere (--export of a scratch file).
+    try:
+        source = json_path.resolve().relative_to(ROOT).as_posix()
+    except ValueError:
+        source = str(json_path)
+    lines = [f"# Generated by tests/golden/export_flat.py from {source}"
              " (format: see that script); do not edit.",
              f"format {FORMAT}", f"family {one_line(family)}", f"cases {len(cases)}"]
     for i, case in enumerate(cases):
@@ -392,9 +522,17 @@ def main() -> int:
     parser.add_argument("--out", type=Path, default=None,
                         help="output directory (default: <cases>/flat)")
     parser.add_argument("--header", type=Path, default=ROOT / "libisect" / "include" / "isect.h")
+    parser.add_argument("--export", type=Path, nargs=2, metavar=("JSON", "TXT"),
+                        help="export one JSON file to one flat file (nothing else)")
     args = parser.parse_args()
     out_dir = args.out or args.cases / "flat"
     codes = Codes(header_constants(args.header))
+
+    if args.export:
+        source, target = args.export
+        target.write_text(export(source, codes))
+        print(f"wrote {target}")
+        return 0
 
     wanted = {f"{p.stem}.txt": export(p, codes) for p in sorted(args.cases.glob("*.json"))}
     if not wanted:
