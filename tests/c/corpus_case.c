@@ -21,6 +21,7 @@ typedef struct name_value {
 static const name_value op_names[] = {
     { "intersect", CORPUS_INTERSECT },
     { "contains", CORPUS_CONTAINS },
+    { "mesh_check", CORPUS_MESH_CHECK },
     { "point_in_polygon2", CORPUS_POINT_IN_POLYGON2 },
     { "winding_number2", CORPUS_WINDING_NUMBER2 },
     { "polygon_normal", CORPUS_POLYGON_NORMAL },
@@ -180,12 +181,15 @@ static int tolerance_parse(const cJSON *item, corpus_tolerance *tol, cj_error *e
 {
     const cJSON *obj = object_field(item, "tol", 0, err);
     tol->t = tol->point = tol->normal = tol->uv = DEFAULT_TOLERANCE;
+    tol->volume = tol->area = DEFAULT_TOLERANCE;
     if (obj == NULL)
         return cJSON_GetObjectItemCaseSensitive(item, "tol") == NULL;
     return cj_number_or(obj, "tol", "t", DEFAULT_TOLERANCE, &tol->t, err) &&
            cj_number_or(obj, "tol", "point", DEFAULT_TOLERANCE, &tol->point, err) &&
            cj_number_or(obj, "tol", "normal", DEFAULT_TOLERANCE, &tol->normal, err) &&
-           cj_number_or(obj, "tol", "uv", DEFAULT_TOLERANCE, &tol->uv, err);
+           cj_number_or(obj, "tol", "uv", DEFAULT_TOLERANCE, &tol->uv, err) &&
+           cj_number_or(obj, "tol", "volume", DEFAULT_TOLERANCE, &tol->volume, err) &&
+           cj_number_or(obj, "tol", "area", DEFAULT_TOLERANCE, &tol->area, err);
 }
 
 /* "flags" is informational here (the C runner runs every case, c-only
@@ -272,6 +276,8 @@ static int expect_parse(const cJSON *item, corpus_case *c, cj_error *err)
             return 0;
         c->inside = (int)value;
         return 1;
+    case CORPUS_MESH_CHECK:
+        return corpus_mesh_report_parse(expect, &c->report, err);
     case CORPUS_WINDING_NUMBER2:
         if (!cj_integer(expect, "expect", "winding", INT32_MIN, INT32_MAX, &value, err))
             return 0;
@@ -298,6 +304,14 @@ static int inputs_parse(const cJSON *item, corpus_case *c, cj_error *err)
         return corpus_shape_parse(cJSON_GetObjectItemCaseSensitive(item, "shape"), &c->shape,
                                   err) &&
                transform_parse(item, c, err) && cj_vector(item, "", "point", 3, c->point, err);
+    case CORPUS_MESH_CHECK:
+        /* No transform: the report describes the mesh as it was given. */
+        if (!corpus_shape_parse(cJSON_GetObjectItemCaseSensitive(item, "shape"), &c->shape,
+                                err))
+            return 0;
+        if (!c->shape.is_mesh)
+            return cj_fail(err, "field \"shape\": op \"mesh_check\" needs a mesh");
+        return 1;
     case CORPUS_POINT_IN_POLYGON2:
         return corpus_rule_parse(item, "", "rule", &c->rule, err) &&
                cj_rows(item, "", "polygon", 2, &c->polygon2, &c->polygon2_n, err) &&

@@ -15,6 +15,7 @@
 typedef enum corpus_op {
     CORPUS_INTERSECT,
     CORPUS_CONTAINS,
+    CORPUS_MESH_CHECK,
     CORPUS_POINT_IN_POLYGON2,
     CORPUS_WINDING_NUMBER2,
     CORPUS_POLYGON_NORMAL,
@@ -24,6 +25,7 @@ typedef enum corpus_op {
 /* Relative tolerances of "tol"; each defaults to 1e-12. */
 typedef struct corpus_tolerance {
     double t, point, normal, uv;
+    double volume, area; /* mesh_check */
 } corpus_tolerance;
 
 typedef struct corpus_expected_hit {
@@ -40,7 +42,7 @@ typedef struct corpus_case {
     const char *name; /* points into the JSON document */
     corpus_op   op;
 
-    /* intersect / contains */
+    /* intersect / contains / mesh_check (only the shape) */
     corpus_shape shape;
     int          has_transform;
     double       transform[16];
@@ -64,6 +66,7 @@ typedef struct corpus_case {
     int32_t              winding; /* winding_number2 */
     double               normal[3];
     double               plane[4];
+    isect_mesh_report    report;  /* mesh_check; reserved left 0 */
     corpus_tolerance     tol;
 } corpus_case;
 

@@ -4,6 +4,7 @@
  *
  *   corpus_intersect.c  op "intersect": scalar function and isect_intersect
  *   corpus_batch.c      op "intersect": isect_intersect_batch, _all_batch
+ *   corpus_mesh.c       building a case's mesh; op "mesh_check"
  *   corpus_ops.c        the other ops (contains, 2D helpers, normals)
  */
 #ifndef ISECT_CORPUS_CHECKS_H
@@ -45,6 +46,14 @@ void check_all_batch_ok(case_report *r, const intersect_setup *s,
  * whole call and writes nothing; a bad ray only marks that ray INVALID. */
 void check_batch_error(case_report *r, const intersect_setup *s);
 
+/* Build the case's mesh when its shape is one, before any op runs, and put
+ * it into c->shape (corpus_case_free destroys it). When isect_mesh_create
+ * fails, that status is the case's result whatever the op: it is checked
+ * against the expected status and 0 is returned (the case is finished);
+ * otherwise 1. Also checks isect_mesh_bytes of the new mesh. */
+int mesh_setup(corpus_case *c, case_report *r);
+
+void check_mesh_check_case(const corpus_case *c, case_report *r);
 void check_contains_case(const corpus_case *c, case_report *r);
 void check_point_in_polygon2_case(const corpus_case *c, case_report *r);
 void check_winding_number2_case(const corpus_case *c, case_report *r);

@@ -2,6 +2,13 @@
  * corpus_intersect.c — op "intersect": the type's scalar function and
  * isect_intersect, each with a large buffer, counting only (hits NULL,
  * cap 0) and cap 1; then the batch paths (corpus_batch.c).
+ *
+ * A mesh has no scalar function (isect_ray_*); its hits exist only through
+ * isect_intersect. So for a mesh the object-space path below calls
+ * isect_intersect on the untransformed descriptor instead, and an
+ * untransformed mesh case has no second path at all: it would repeat the
+ * isect_intersect call exactly. Every other check runs for meshes as for
+ * any shape.
  */
 #include "corpus_checks.h"
 #include "corpus_hits.h"
@@ -34,9 +41,29 @@ static int via_shape(const intersect_setup *s, isect_hit *hits, int cap)
     return isect_intersect(&s->shape, &s->c->ray, s->opts, hits, cap);
 }
 
-/* The scalar function; for a transformed case composed by hand the way the
- * header describes it: ray to object space, scalar call, hits to world. */
-static int via_scalar(const intersect_setup *s, isect_hit *hits, int cap)
+/* The hits of the untransformed shape: its scalar function, or for a mesh
+ * isect_intersect without the xform. */
+static int object_space_call(const intersect_setup *s, const isect_ray *ray, isect_hit *hits,
+                             int cap)
+{
+    isect_shape plain = s->shape;
+    if (s->c->shape.scalar)
+        return corpus_shape_scalar(&s->shape, ray, s->opts, hits, cap);
+    plain.xform = NULL;
+    return isect_intersect(&plain, ray, s->opts, hits, cap);
+}
+
+/* Whether a case has the object-space path (see the top of the file). Raw
+ * integer types have no scalar function either. */
+static int has_object_space_path(const intersect_setup *s)
+{
+    const corpus_shape *shape = &s->c->shape;
+    return shape->scalar || (shape->named && shape->is_mesh && s->xform != NULL);
+}
+
+/* The object-space call; for a transformed case composed by hand the way
+ * the header describes it: ray to object space, the call, hits to world. */
+static int via_object_space(const intersect_setup *s, isect_hit *hits, int cap)
 {
     isect_ray ray = s->c->ray;
     int count, status;
@@ -45,7 +72,7 @@ static int via_scalar(const intersect_setup *s, isect_hit *hits, int cap)
         if (status < 0)
             return status;
     }
-    count = corpus_shape_scalar(&s->shape, &ray, s->opts, hits, cap);
+    count = object_space_call(s, &ray, hits, cap);
     if (count > 0 && cap > 0 && s->xform != NULL) {
         status = isect_xform_hits(s->xform, hits, count < cap ? count : cap);
         if (status < 0)
@@ -54,9 +81,10 @@ static int via_scalar(const intersect_setup *s, isect_hit *hits, int cap)
     return count;
 }
 
-static void scalar_path_name(char *out, size_t size, const intersect_setup *s)
+static void object_space_path_name(char *out, size_t size, const intersect_setup *s)
 {
-    const char *scalar = corpus_shape_scalar_name(s->shape.type);
+    const char *scalar = s->c->shape.scalar ? corpus_shape_scalar_name(s->shape.type)
+                                            : "isect_intersect(xform NULL)";
     if (s->xform != NULL)
         snprintf(out, size, "isect_xform_ray+%s+isect_xform_hits", scalar);
     else
@@ -146,9 +174,9 @@ void check_intersect_case(const corpus_case *c, case_report *r)
 {
     isect_xform xform;
     intersect_setup s;
-    isect_hit reference[CORPUS_HIT_CAP], scalar_hits[CORPUS_HIT_CAP];
-    char scalar_name[128];
-    int ref_count, scalar_count;
+    isect_hit reference[CORPUS_HIT_CAP], object_hits[CORPUS_HIT_CAP];
+    char object_name[128];
+    int ref_count, object_count;
 
     s.c = c;
     s.shape = c->shape.desc;
@@ -156,21 +184,21 @@ void check_intersect_case(const corpus_case *c, case_report *r)
     if (!transform_setup(c, r, &xform, &s.xform))
         return;
     s.shape.xform = s.xform;
-    scalar_path_name(scalar_name, sizeof scalar_name, &s);
+    object_space_path_name(object_name, sizeof object_name, &s);
 
     if (c->status != ISECT_OK) {
         check_path_error(r, "isect_intersect", via_shape, &s);
-        if (c->shape.named)
-            check_path_error(r, scalar_name, via_scalar, &s);
+        if (has_object_space_path(&s))
+            check_path_error(r, object_name, via_object_space, &s);
         check_batch_error(r, &s);
         return;
     }
 
     ref_count = check_path_ok(r, "isect_intersect", via_shape, &s, reference);
-    if (c->shape.named) {
-        scalar_count = check_path_ok(r, scalar_name, via_scalar, &s, scalar_hits);
-        if (s.xform == NULL && ref_count >= 0 && scalar_count == ref_count)
-            check_paths_agree(r, scalar_name, reference, scalar_hits, ref_count);
+    if (has_object_space_path(&s)) {
+        object_count = check_path_ok(r, object_name, via_object_space, &s, object_hits);
+        if (s.xform == NULL && ref_count >= 0 && object_count == ref_count)
+            check_paths_agree(r, object_name, reference, object_hits, ref_count);
     }
     /* The batch results are defined as isect_intersect's; without them
      * there is nothing to compare against (the failure is reported). */

@@ -1,6 +1,6 @@
 /*
- * corpus_ops.c — the ops other than "intersect": contains, the 2D polygon
- * helpers, polygon_normal and plane_from_points.
+ * corpus_ops.c — the ops other than "intersect" and "mesh_check": contains,
+ * the 2D polygon helpers, polygon_normal and plane_from_points.
  *
  * Point queries are also run as a batch of POINT_BATCH copies of the point
  * with a NaN point in the middle, which the batch must mark ISECT_INVALID
@@ -91,6 +91,8 @@ static void check_answer(case_report *r, const char *name, const corpus_case *c,
         report_status(r, name, got, c->status);
 }
 
+/* A mesh shape arrives built (mesh_setup), so its descriptor is complete
+ * here; an open mesh is E_ARG like a thin surface, from both calls. */
 void check_contains_case(const corpus_case *c, case_report *r)
 {
     isect_xform xform;

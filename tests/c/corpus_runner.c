@@ -85,6 +85,9 @@ static void run_parsed_case(const corpus_case *c, case_report *r)
     case CORPUS_CONTAINS:
         check_contains_case(c, r);
         break;
+    case CORPUS_MESH_CHECK:
+        check_mesh_check_case(c, r);
+        break;
     case CORPUS_POINT_IN_POLYGON2:
         check_point_in_polygon2_case(c, r);
         break;
@@ -130,11 +133,12 @@ static void run_case(const char *file, const cJSON *item, int index, id_set *ids
         report_fail(&report, "malformed case: %s", err.message);
     }
 
-    if (corpus_case_parse(item, &c, &err))
-        run_parsed_case(&c, &report);
-    else
+    /* A mesh is built first: its creation can be the case's whole result. */
+    if (!corpus_case_parse(item, &c, &err))
         report_fail(&report, "malformed case: %s", err.message);
-    corpus_case_free(&c);
+    else if (mesh_setup(&c, &report))
+        run_parsed_case(&c, &report);
+    corpus_case_free(&c); /* destroys the mesh too */
 
     report_end(&report);
     if (report.failures == 0)

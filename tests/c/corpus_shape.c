@@ -171,6 +171,14 @@ static int data_parse(const cJSON *shape, const shape_layout *layout, corpus_sha
     return 1;
 }
 
+/* A mesh's arrays; its descriptor keeps data NULL and n, flags 0, and gets
+ * its mesh only when the case runs (mesh_setup). */
+static int mesh_parse(const cJSON *shape, corpus_shape *out, cj_error *err)
+{
+    out->is_mesh = 1;
+    return corpus_mesh_parse(shape, &out->mesh_input, err);
+}
+
 int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err)
 {
     const cJSON *type;
@@ -185,16 +193,25 @@ int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err)
     if (type == NULL)
         return cj_fail(err, "field \"shape.type\" is missing");
     if (cJSON_IsString(type) && type->valuestring != NULL) {
+        out->named = 1;
+        if (strcmp(type->valuestring, "mesh") == 0) {
+            out->desc.type = ISECT_MESH;
+            return mesh_parse(shape, out, err);
+        }
         layout = layout_by_name(type->valuestring);
         if (layout == NULL)
             return cj_fail(err, "field \"shape.type\": unknown type \"%s\"", type->valuestring);
-        out->named = 1;
+        out->scalar = 1;
         out->desc.type = layout->type;
     } else {
         long long raw = 0;
         if (!cj_integer_value(type, "shape.type", INT32_MIN, INT32_MAX, &raw, err))
             return cj_fail(err, "field \"shape.type\" must be a type name or an integer");
         out->desc.type = (int32_t)raw;
+        /* Tested before the layouts: a mesh's "vertices" would pass for a
+         * polygon's. */
+        if (cJSON_HasObjectItem(shape, "faces"))
+            return mesh_parse(shape, out, err);
         layout = layout_by_keys(shape);
     }
     if (layout != NULL && !data_parse(shape, layout, out, err))
@@ -214,6 +231,10 @@ void corpus_shape_free(corpus_shape *s)
     free(s->data);
     s->data = NULL;
     s->desc.data = NULL;
+    corpus_mesh_input_free(&s->mesh_input);
+    isect_mesh_destroy(s->mesh);
+    s->mesh = NULL;
+    s->desc.mesh = NULL;
 }
 
 int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
@@ -242,7 +263,7 @@ int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_
     case ISECT_QUADRIC:
         return isect_ray_quadric(ray, d, opts, hits, cap);
     default:
-        /* Only named types reach here, and every name has a case above. */
+        /* Only types with a scalar function reach here, and each has a case above. */
         return ISECT_E_ARG;
     }
 }

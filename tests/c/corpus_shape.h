@@ -1,17 +1,24 @@
 /*
  * corpus_shape.h — a corpus "shape" object as an isect_shape descriptor, and
  * the call of the type's own scalar function (isect_ray_sphere etc.) on it.
+ * A mesh shape carries the arrays of its mesh (corpus_mesh.h); the mesh is
+ * built when the case runs (mesh_setup) and owned here from then on.
  */
 #ifndef ISECT_CORPUS_SHAPE_H
 #define ISECT_CORPUS_SHAPE_H
 
 #include "corpus_json.h"
+#include "corpus_mesh.h"
 #include "isect.h"
 
 typedef struct corpus_shape {
     isect_shape desc; /* xform is left NULL; the checks set it */
     double *data;     /* owned; desc.data points here (or is NULL) */
-    int named;        /* 1 for a "type" given by name: it has a scalar function */
+    int named;        /* 1 for a "type" given by name */
+    int scalar;       /* 1 when the type has a scalar function: every name but "mesh" */
+    int is_mesh;      /* "mesh", or a raw type with mesh keys: mesh_input is set */
+    corpus_mesh_input mesh_input;
+    isect_mesh *mesh; /* owned once built; desc.mesh points here (or is NULL) */
 } corpus_shape;
 
 /* Parse the case's "shape" object. A named type reads its keys as in
@@ -20,13 +27,17 @@ typedef struct corpus_shape {
  * present, so {"type": 99, "center": .., "radius": ..} carries sphere data;
  * with no matching keys data is NULL. The data buffer is zero-padded so a
  * raw type that reads more numbers than its keys gave stays in bounds.
+ * "mesh", and a raw type with the key "faces", read the mesh's vertices and
+ * faces instead (data NULL, n and flags 0; desc.mesh is set by mesh_setup).
  * Returns 1, or 0 with *err set. */
 int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err);
 
+/* Frees the data and the mesh arrays, and destroys the mesh if one was built. */
 void corpus_shape_free(corpus_shape *s);
 
-/* Run the scalar function of a named type with the descriptor's numbers, in
- * the argument order the header gives; s->xform is ignored. */
+/* Run the scalar function of a type that has one (corpus_shape.scalar) with
+ * the descriptor's numbers, in the argument order the header gives; s->xform
+ * is ignored. */
 int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
                         isect_hit *hits, int cap);
 
