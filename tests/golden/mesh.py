@@ -474,6 +474,11 @@ def cases() -> list[dict]:
     # --- open, misoriented, mixed, non-manifold, degenerate, empty
     open_cube = with_faces(cq, CUBE_QUADS[:5])     # the z = 1 face removed
     hit("open cube: up through the missing face", ["open-mesh", "polygon-faces"], open_cube, up(0.5, 0.5))
+    hit("open cube: any_hit, one possible hit", ["open-mesh", "any-hit", "polygon-faces"], open_cube,
+        up(0.5, 0.5), opts=opts(flags=["any_hit"]))
+    hit("triangle cube: any_hit on a miss", ["any-hit", "miss"], ct, up(1.5, 0.5), opts=opts(flags=["any_hit"]))
+    hit("triangle cube: any_hit, one hit in [tmin, tmax]", ["any-hit", "clip"], ct,
+        ray((0.25, 0.5, -1), (0, 0, 1), tmax=1.5), opts=opts(flags=["any_hit"]))
     flipped = with_faces(cq, CUBE_QUADS[:4] + [CUBE_QUADS[4][::-1]] + CUBE_QUADS[5:])
     hit("cube with the z = 0 face flipped: both hits exit", ["misoriented", "polygon-faces"], flipped,
         up(0.25, 0.5))

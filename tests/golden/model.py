@@ -275,6 +275,9 @@ NOTES: dict[str, str] = {
     "empty-mesh": "A mesh with vertices but no faces: valid, never hit, an all-zero report.",
     "report": "op mesh_check: the isect_mesh_report of the mesh; integer fields exact, volume and area "
               "within tol.",
+    "any-hit": "opts.flags has any_hit: isect_intersect reports the first hit the traversal finds, "
+               "so these cases have at most one hit in [tmin, tmax] (with several, which one is "
+               "unspecified).",
     "tiling": "One of a set of polygons tiling the plane around the query point: exactly one "
               "of the group contains it.",
 }

@@ -164,5 +164,12 @@ def evaluate(c: dict) -> dict:
         hits = solver(shape, r, ctx)
     cull = "cull_back" in (c.get("opts") or {}).get("flags", [])
     kept = finish(hits, r, ctx, culls_back(shape), cull)
+    if "any_hit" in (c.get("opts") or {}).get("flags", []):
+        # isect.h: the first hit found (a mesh's traversal order decides which),
+        # for analytic shapes the closest. Only cases with one candidate are
+        # decided by the contract alone.
+        if len(kept) > 1 and shape["type"] == "mesh":
+            raise DesignError("any_hit on a mesh with several hits: which one is unspecified")
+        kept = kept[:1]
     return {"status": "ok", "count": len(kept), "hits": [hit_json(h, r) for h in kept]}
 
