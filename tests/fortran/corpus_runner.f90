@@ -1401,6 +1401,10 @@ contains
         logical :: in_case, header_ok
 
         current_file = file
+        ! Allocated up front: gfortran -O3 cannot see that every path below
+        ! assigns them before use (-Wmaybe-uninitialized under meson's -Werror).
+        key = ""
+        rest = ""
         open (newunit=unit, file=file, status="old", action="read", iostat=ios)
         if (ios /= 0) then
             call file_fail(file, "cannot be opened")
