@@ -4,7 +4,9 @@
  * The shape and options are validated once per call; a bad ray or point only
  * marks its own record (ISECT_INVALID) and the loop goes on. Each ray runs
  * through the same shape_ray_hits() / shape_ray_first() as isect_intersect,
- * so a batch closest hit is bit for bit the first hit of the scalar call.
+ * so a batch closest hit is bit for bit the first hit of the scalar call. A
+ * family may run isect_intersect_batch's rays its own way (the mesh keeps
+ * several traversals in flight) but must write exactly these records.
  */
 #include "isect_internal.h"
 
@@ -27,15 +29,16 @@ ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ra
     if (f == NULL)
         return status;
 
+    /* A family with its own loop (the mesh) gives the same records. */
+    first_batch_fn first_batch = shape_first_batch(f);
+    if (first_batch != NULL)
+        return first_batch(f, shape, rays, n, &prm, closest);
     int64_t hit_count = 0;
     for (int64_t i = 0; i < n; i++) {
         int found = ray_check(&rays[i]);
         if (found == ISECT_OK)
             found = shape_ray_first(f, shape, &rays[i], &prm, &closest[i]);
-        if (found > 0)
-            hit_count++;
-        else
-            hit_set_miss(&closest[i], found < 0 ? ISECT_INVALID : ISECT_MISS);
+        hit_count += batch_record(&closest[i], found);
     }
     return hit_count;
 }

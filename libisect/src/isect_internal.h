@@ -110,6 +110,35 @@ int64_t shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_
 int shape_ray_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
                     const isect_params *prm, isect_hit *out);
 
+/* isect_intersect_batch's work after the argument checks, for a family
+ * that runs many rays at once (the mesh: several traversals in flight):
+ * closest[i] and the count of rays hit exactly as batch.c's per-ray loop
+ * over ray_check and shape_ray_first writes them. */
+typedef int64_t (*first_batch_fn)(const shape_family *f, const isect_shape *s,
+                                  const isect_ray *rays, int64_t n, const isect_params *prm,
+                                  isect_hit *closest);
+
+/* The family's first_batch, or NULL (then the per-ray loop runs). */
+first_batch_fn shape_first_batch(const shape_family *f);
+
+/* The object-space ray of a valid world-space ray, as every query sees it:
+ * ISECT_OK with *r = ray (no transform) or tmp (the transformed ray), or
+ * the ray_check status of the transformed ray (a huge inverse can take a
+ * fine ray out of the finite doubles). */
+int shape_object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
+                     const isect_ray **r);
+
+/* The batch record of a ray whose query returned found (shape_ray_first's
+ * result, or ray_check's status): 1 for a hit (the record already written),
+ * else the record becomes ISECT_MISS (0) or ISECT_INVALID (< 0) and 0. */
+static inline int64_t batch_record(isect_hit *rec, int found)
+{
+    if (found > 0)
+        return 1;
+    hit_set_miss(rec, found < 0 ? ISECT_INVALID : ISECT_MISS);
+    return 0;
+}
+
 /* 1 when the shape has an inside (contains() applies), 0 for thin surfaces. */
 int shape_is_solid(const shape_family *f, const isect_shape *s);
 
@@ -121,6 +150,14 @@ int shape_point_inside(const shape_family *f, const isect_shape *s, const double
 void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out);
 void xform_point_to_object(const isect_xform *x, const double p[3], double out[3]);
 void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n);
+
+/* n object-space records of shape s to world space (nothing without a
+ * transform). */
+static inline void shape_hits_to_world(const isect_shape *s, isect_hit *hits, int64_t n)
+{
+    if (s->xform != NULL)
+        xform_hits_unchecked(s->xform, hits, (int)n);
+}
 
 /* Build the descriptor of a scalar call and run it through the shared path. */
 int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,

@@ -286,9 +286,14 @@ static int mesh_build(isect_mesh *m)
             const int32_t *corner = m->idx + mesh_face_start(m, f);
             p->face = f;
             p->nverts = mesh_face_size(m, f);
+            memset(p->n, 0, sizeof p->n);
             if (p->nverts == 3) {
                 for (int c = 0; c < 3; c++)
                     memcpy(p->v + 3 * c, mesh_vertex(m, corner[c]), 3 * sizeof(double));
+                /* The plane the exact test would compute on every hit. */
+                int nonzero;
+                if (!triangle_plane(p->v, p->v + 3, p->v + 6, p->n, &nonzero))
+                    memset(p->n, 0, sizeof p->n);
             } else {
                 memcpy(p->v, it.plane[item], 6 * sizeof(double));
                 memset(p->v + 6, 0, 3 * sizeof(double));

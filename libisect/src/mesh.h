@@ -19,10 +19,13 @@
 #include "bvh.h"
 #include "isect_internal.h"
 
-/* One face in BVH leaf order, with what the hot loop needs inline. 80 bytes. */
+/* One face in BVH leaf order, with what the hot loop needs inline. 104
+ * bytes. */
 typedef struct mesh_prim {
     double  v[9];   /* triangle: its vertices a, b, c (copies, bit-identical to
                        the mesh's vertex array); polygon: unit normal, centroid */
+    double  n[3];   /* triangle: its triangle_plane normal, or 0 0 0 when that
+                       has none (a face the exact test never hits); polygon: 0 */
     int32_t face;   /* face index (the hit's prim) */
     int32_t nverts; /* 3: triangle; > 3: polygon, vertices through the face's idx */
 } mesh_prim;
@@ -80,11 +83,12 @@ int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_r
 int     mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
                        const isect_params *prm, isect_hit *out);
 int     mesh_contains(const isect_shape *s, const double p[3]);
-/* isect_intersect_batch for a mesh (a proposed optional family entry): the
- * closest (any, under ISECT_ANY_HIT) hit of each world-space ray into
- * closest[i], ISECT_INVALID / ISECT_MISS records as the batch loop writes
- * them; returns the number of rays hit. Bit for bit mesh_hit_first's
- * records, several traversals interleaved to overlap their cache misses. */
+/* The family's first_batch (isect_intersect_batch for a mesh): the closest
+ * (any, under ISECT_ANY_HIT) hit of each world-space ray into closest[i],
+ * ISECT_INVALID / ISECT_MISS records as the batch loop writes them;
+ * returns the number of rays hit. Bit for bit the per-ray loop over
+ * mesh_hit_first, several traversals interleaved to overlap their cache
+ * misses. */
 int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
                              const isect_ray *rays, int64_t n, const isect_params *prm,
                              isect_hit *closest);

@@ -66,26 +66,58 @@
 #include "planar.h"
 #include "predicates.h"
 #include "ray_frame.h"
+#include "vec3.h"
 
 #include <float.h>
 #include <string.h>
 
+/* The node test runs on four children at once with SSE (every x86-64 has
+ * it); elsewhere, or with ISECT_NO_SIMD defined, the same float operations
+ * one child at a time. */
+#if defined(__SSE2__) && !defined(ISECT_NO_SIMD)
+#define MESH_SSE 1
+#include <emmintrin.h>
+#else
+#define MESH_SSE 0
+#endif
+
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2.0)
 
-/* Padding of the boxes in units of u*D, and the edge-function and t bounds
- * of the pre-filter in units of u*D^2 and u*max|z| (see above). */
-#define BOX_PAD_ULPS 64.0
+/* The node test's range (D and max|dir| as powers of two), its origin
+ * shifts in units of D (steep and flat axes), the ratio below which a
+ * direction component counts as flat, and the bound of the scaled time of
+ * every hit that matters (see "The node test" above). */
+#define SLAB_D_MIN 0x1p-100
+#define SLAB_D_MAX 0x1p100
+#define SLAB_DIR_MIN 0x1p-900
+#define SLAB_DIR_MAX 0x1p900
+#define SLAB_PAD 0x1p-20
+#define SLAB_PAD_FLAT 0x1p-18
+#define SLAB_FLAT 0x1p-20
+#define SLAB_TIME_BOUND 4.0
+
+/* The edge-function and t bounds of the pre-filter in units of u*D^2 and
+ * u*max|z| (see above). */
 #define EDGE_BOUND_ULPS 128.0
 #define EDGE_BOUND_FLOOR 0x1p-1000
 #define T_SLACK_ULPS 16.0
 
 enum query_mode { QUERY_CLOSEST, QUERY_ALL, QUERY_ANY };
 
+/* One float per child of a node, for the node test (SSE: one register). */
+typedef union slab4 {
+    float f[BVH_WIDTH];
+#if MESH_SSE
+    __m128 v;
+#endif
+} slab4;
+
 /* A node or leaf reference as the traversal stacks it. */
 typedef struct node_ref {
     int32_t ref;   /* >= 0 inner node, < 0 leaf ~first */
     int32_t count; /* leaf size; 0 for an inner node */
-    double  entry; /* where the ray enters its box; -inf: never culled by t */
+    float   entry; /* where the ray enters its box (scaled time, rounded
+                      down); -inf: never culled by t */
 } node_ref;
 
 typedef struct query {
@@ -95,8 +127,13 @@ typedef struct query {
     ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
                               misses every box never pays for it */
     int       frame_ready;
-    /* Slab test on padded boxes. */
-    double org_near[3], org_far[3], inv_dir[3];
+    /* Node test (float, scaled time): per axis the origin moved toward
+     * the near and toward the far plane and the reciprocal of the scaled
+     * direction, each repeated for the four children; */
+    slab4  slab_org_near[3], slab_org_far[3], slab_inv[3];
+    slab4  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
+                                     down and up */
+    double slab_scale;            /* 1 / sigma; 0: the node test culls nothing */
     int    near_plane[3], far_plane[3]; /* index into a node's 6 bounds */
     /* Pre-filter. */
     double edge_bound;
@@ -110,6 +147,47 @@ typedef struct query {
     int64_t    cap;
 } query;
 
+/* |x| = m 2^k, 1 <= m < 2, for a normal positive double: k (C99's ilogb
+ * is a libm call). */
+static inline int exponent_of(double x)
+{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return (int)((bits >> 52) & 0x7ff) - 1023;
+}
+
+/* 2^k for -1022 <= k <= 1023. */
+static inline double power_of_two(int k)
+{
+    uint64_t bits = (uint64_t)(k + 1023) << 52;
+    double x;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+/* A scaled time x (any double but NaN) clamped to the bound and rounded to
+ * a float below (above) it. In [-4, 4] the float conversion errs by at
+ * most 2^-24 |y| + 2^-150, which the margin |x| 2^-22 + 2^-140 exceeds. */
+static inline float slab_time_down(double x)
+{
+    x = x < -SLAB_TIME_BOUND ? -SLAB_TIME_BOUND : x > SLAB_TIME_BOUND ? SLAB_TIME_BOUND : x;
+    return (float)(x - (fabs(x) * 0x1p-22 + 0x1p-140));
+}
+
+static inline float slab_time_up(double x)
+{
+    x = x < -SLAB_TIME_BOUND ? -SLAB_TIME_BOUND : x > SLAB_TIME_BOUND ? SLAB_TIME_BOUND : x;
+    return (float)(x + (fabs(x) * 0x1p-22 + 0x1p-140));
+}
+
+/* The node test's bound for t_limit = t. */
+static inline void slab_set_limit(query *q, double t)
+{
+    float limit = q->slab_scale != 0.0 ? slab_time_up(t * q->slab_scale) : INFINITY;
+    for (int c = 0; c < BVH_WIDTH; c++)
+        q->slab_limit.f[c] = limit;
+}
+
 static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
                        const isect_params *prm)
 {
@@ -117,20 +195,107 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
     q->ray = ray;
     q->prm = prm;
     q->frame_ready = 0;
-    double org_max = 0.0;
-    for (int k = 0; k < 3; k++)
-        org_max = fabs(ray->org[k]) > org_max ? fabs(ray->org[k]) : org_max;
-    double d = (org_max + m->coord_bound) * (1.0 + 4.0 * UNIT_ROUNDOFF);
-    double pad = BOX_PAD_ULPS * UNIT_ROUNDOFF * d;
+    /* The node test: in range, scaled time tau = t / sigma with sigma =
+     * 2^e putting sigma max|dir| in [2^E, 2^(E+1)) where D is; else a
+     * test that passes every child (slab_scale 0). Per axis: flat when
+     * |dir_k| < 2^-20 max|dir|; the origin moved by the pad (flat: the
+     * flat pad) toward the near and the far plane; the scaled reciprocal
+     * 1 / (dir_k sigma), which for a steep axis is fl(1 / dir_k) 2^-e
+     * exactly (a power of two, no under- or overflow in range), and for a
+     * flat one +-inf by the sign of dir_k. */
+#if MESH_SSE
+    /* Axes x, y in one register and z in another: the same double
+     * operations as the portable code below, without its branches. */
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d dxy = _mm_loadu_pd(ray->dir), dzz = _mm_load1_pd(ray->dir + 2);
+    __m128d oxy = _mm_loadu_pd(ray->org), ozz = _mm_load1_pd(ray->org + 2);
+    __m128d ixy = _mm_div_pd(_mm_set1_pd(1.0), dxy), izz = _mm_div_pd(_mm_set1_pd(1.0), dzz);
+    __m128d adxy = _mm_andnot_pd(sign, dxy), adzz = _mm_andnot_pd(sign, dzz);
+    __m128d ao = _mm_max_pd(_mm_andnot_pd(sign, oxy), _mm_andnot_pd(sign, ozz));
+    __m128d ad = _mm_max_pd(adxy, adzz);
+    double org_max = _mm_cvtsd_f64(_mm_max_sd(ao, _mm_unpackhi_pd(ao, ao)));
+    double dir_max = _mm_cvtsd_f64(_mm_max_sd(ad, _mm_unpackhi_pd(ad, ad)));
+#else
+    double org_max = 0.0, dir_max = 0.0;
     for (int k = 0; k < 3; k++) {
-        int negative = signbit(ray->dir[k]) != 0;
-        double toward = negative ? -pad : pad;
-        q->inv_dir[k] = 1.0 / ray->dir[k];
-        q->org_near[k] = ray->org[k] + toward;
-        q->org_far[k] = ray->org[k] - toward;
+        org_max = fabs(ray->org[k]) > org_max ? fabs(ray->org[k]) : org_max;
+        dir_max = fabs(ray->dir[k]) > dir_max ? fabs(ray->dir[k]) : dir_max;
+    }
+#endif
+    double d = (org_max + m->coord_bound) * (1.0 + 4.0 * UNIT_ROUNDOFF);
+    int in_range = d >= SLAB_D_MIN && d <= SLAB_D_MAX && dir_max >= SLAB_DIR_MIN
+                && dir_max <= SLAB_DIR_MAX;
+    int e = in_range ? exponent_of(d) - exponent_of(dir_max) : 0;
+    double scale = power_of_two(-e), flat_below = SLAB_FLAT * dir_max;
+    q->slab_scale = in_range ? scale : 0.0;
+#if MESH_SSE
+    __m128d vfb = _mm_set1_pd(flat_below), vscale = _mm_set1_pd(scale);
+    __m128d flat_xy = _mm_cmplt_pd(adxy, vfb), flat_zz = _mm_cmplt_pd(adzz, vfb);
+    __m128d pad = _mm_set1_pd(SLAB_PAD * d), pad_flat = _mm_set1_pd(SLAB_PAD_FLAT * d);
+    __m128d toward_xy = _mm_or_pd(_mm_or_pd(_mm_and_pd(flat_xy, pad_flat),
+                                            _mm_andnot_pd(flat_xy, pad)),
+                                  _mm_and_pd(sign, dxy));
+    __m128d toward_zz = _mm_or_pd(_mm_or_pd(_mm_and_pd(flat_zz, pad_flat),
+                                            _mm_andnot_pd(flat_zz, pad)),
+                                  _mm_and_pd(sign, dzz));
+    /* Floats [x, y, z, z]. */
+    __m128 on = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(oxy, toward_xy)),
+                              _mm_cvtpd_ps(_mm_add_pd(ozz, toward_zz)));
+    __m128 of = _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(oxy, toward_xy)),
+                              _mm_cvtpd_ps(_mm_sub_pd(ozz, toward_zz)));
+    __m128 steep_inv = _mm_movelh_ps(_mm_cvtpd_ps(_mm_mul_pd(ixy, vscale)),
+                                     _mm_cvtpd_ps(_mm_mul_pd(izz, vscale)));
+    __m128 flat_inv = _mm_or_ps(_mm_set1_ps(INFINITY),
+                                _mm_and_ps(_mm_set1_ps(-0.0f),
+                                           _mm_movelh_ps(_mm_cvtpd_ps(dxy), _mm_cvtpd_ps(dzz))));
+    /* The double masks' low halves as float lanes [x, y, z, z]. */
+    __m128 flat = _mm_castsi128_ps(_mm_unpacklo_epi64(
+        _mm_shuffle_epi32(_mm_castpd_si128(flat_xy), _MM_SHUFFLE(2, 0, 2, 0)),
+        _mm_shuffle_epi32(_mm_castpd_si128(flat_zz), _MM_SHUFFLE(2, 0, 2, 0))));
+    __m128 inv = _mm_or_ps(_mm_and_ps(flat, flat_inv), _mm_andnot_ps(flat, steep_inv));
+    q->slab_org_near[0].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(0, 0, 0, 0));
+    q->slab_org_near[1].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(1, 1, 1, 1));
+    q->slab_org_near[2].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(2, 2, 2, 2));
+    q->slab_org_far[0].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(0, 0, 0, 0));
+    q->slab_org_far[1].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(1, 1, 1, 1));
+    q->slab_org_far[2].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(2, 2, 2, 2));
+    q->slab_inv[0].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0));
+    q->slab_inv[1].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(1, 1, 1, 1));
+    q->slab_inv[2].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(2, 2, 2, 2));
+    int negative = _mm_movemask_pd(dxy) | (_mm_movemask_pd(dzz) & 1) << 2;
+    for (int k = 0; k < 3; k++) {
+        int neg = (negative >> k) & 1;
+        q->near_plane[k] = k + 3 * neg;
+        q->far_plane[k] = k + 3 - 3 * neg;
+    }
+#else
+    for (int k = 0; k < 3; k++) {
+        double dk = ray->dir[k];
+        int flat = fabs(dk) < flat_below;
+        double toward = copysign((flat ? SLAB_PAD_FLAT : SLAB_PAD) * d, dk);
+        float on = (float)(ray->org[k] + toward), of = (float)(ray->org[k] - toward);
+        float ik = flat ? copysignf(INFINITY, (float)dk) : (float)(1.0 / dk * scale);
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            q->slab_org_near[k].f[c] = on;
+            q->slab_org_far[k].f[c] = of;
+            q->slab_inv[k].f[c] = ik;
+        }
+        int negative = signbit(dk) != 0;
         q->near_plane[k] = negative ? k + 3 : k;
         q->far_plane[k] = negative ? k : k + 3;
     }
+#endif
+    if (!in_range) {
+        /* (b - 0) * 0: 0 for every finite bound, NaN (no constraint) for an
+         * infinite one; with tmin -inf and limit +inf every child passes. */
+        memset(q->slab_org_near, 0, sizeof q->slab_org_near);
+        memset(q->slab_org_far, 0, sizeof q->slab_org_far);
+        memset(q->slab_inv, 0, sizeof q->slab_inv);
+    }
+    float tmin = in_range ? slab_time_down(ray->tmin * q->slab_scale) : -INFINITY;
+    for (int c = 0; c < BVH_WIDTH; c++)
+        q->slab_tmin.f[c] = tmin;
+    slab_set_limit(q, ray->tmax);
     /* d * d may overflow (infinite bound: every triangle goes to the exact
      * test) or, near zero, underflow below the floor. */
     q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * d * d;
@@ -236,6 +401,7 @@ static int query_take(query *q, int mode, const isect_hit *h)
             q->best = *h;
             q->found = 1;
             q->t_limit = h->t;
+            slab_set_limit(q, h->t);
         }
         return 0;
     case QUERY_ALL: {
@@ -262,7 +428,9 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
     const isect_mesh *m = q->mesh;
     const isect_ray *ray = q->ray;
     if (!q->frame_ready) {
-        ray_frame_shear(ray, &q->frame);
+        /* Without |dir|: triangle_hit_framed's parallel test needs it
+         * only for a nearly parallel face and then computes it itself. */
+        ray_frame_shear_no_len(ray, &q->frame);
         q->frame_ready = 1;
     }
     for (int32_t i = 0; i < count; i++) {
@@ -272,8 +440,18 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
         if (p->nverts == 3) {
             if (!triangle_candidate(q, p->v, ray->tmin, q->t_limit))
                 continue;
-            hit = triangle_hit_framed(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, &h);
+            /* The plane precomputed (zero: triangle_hit_framed never hits
+             * this face); the face is not collinear (degenerate faces are
+             * not in the BVH), so the exact collinearity test is skipped. */
+            if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
+                continue;
+            hit = triangle_hit_plane_framed(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6,
+                                            p->n, 1, &h);
         } else {
+            /* polygon_hit_plane_framed takes |dir| from the frame: computed
+             * once, bit for bit as ray_frame_shear would. */
+            if (q->frame.dir_len < 0.0)
+                q->frame.dir_len = v3_norm(ray->dir);
             hit = polygon_hit_plane_framed(&q->frame, ray, q->prm, m->verts,
                                            m->idx + mesh_face_start(m, p->face), p->nverts,
                                            ISECT_EVEN_ODD, p->v, p->v + 3, &h);
@@ -302,150 +480,197 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 #define PREFETCH(p) ((void)(p))
 #endif
 
+/* walk is written once and compiled twice, for the scalar queries and
+ * for the batch (its yield argument a constant in each). */
+#if defined(__GNUC__) || defined(__clang__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* The index of the lowest set bit of a 4-bit mask (C99 has no ctz). */
 static const int8_t lowest_bit[16] = { 0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0 };
 
-/* Where a traversal is: the reference it visits next and the stacked ones
- * it will come back to. */
+/* Where a traversal is: the reference it visits next (ref, count as in
+ * node_ref) and the stacked ones it will come back to. */
 typedef struct walker {
-    node_ref cur;
+    int32_t  ref, count;
     int      sp;
     node_ref stack[BVH_STACK_SIZE];
 } walker;
 
 static void walker_init(walker *w)
 {
-    w->cur.ref = 0;
-    w->cur.count = 0;
-    w->cur.entry = -INFINITY;
+    w->ref = 0;
+    w->count = 0;
     w->sp = 0;
 }
 
-/* Tests the four children of node n: 1 and the nearest hit child in
- * w->cur (the others stacked, farthest deepest), or 0 if none is hit. */
-static inline int visit_node(const query *q, walker *w, const bvh_node *n)
+/* The node test of node n's four children: bit c set when child c may
+ * hold a hit that matters, entry[c] where the ray enters its padded box
+ * (scaled time, -inf for a loose child). A NaN from 0 * inf (a flat axis
+ * on a slab plane) is the first operand of max and min, which then return
+ * the second: that slab does not constrain the interval. */
+static inline unsigned node_test(const query *q, const bvh_node *n, float entry[BVH_WIDTH])
+{
+#if MESH_SSE
+    __m128 tn = q->slab_tmin.v, tf = q->slab_limit.v;
+    __m128 loose_lo = tf; /* (unused unless n->loose) */
+    if (n->loose != 0) {
+        /* A loose child's interval starts as the whole line. */
+        __m128 bits = _mm_castsi128_ps(_mm_set_epi32(
+            -(int32_t)((n->loose >> 3) & 1u), -(int32_t)((n->loose >> 2) & 1u),
+            -(int32_t)((n->loose >> 1) & 1u), -(int32_t)(n->loose & 1u)));
+        loose_lo = _mm_or_ps(_mm_and_ps(bits, _mm_set1_ps(-INFINITY)),
+                             _mm_andnot_ps(bits, _mm_set1_ps(INFINITY)));
+        __m128 loose_hi = _mm_or_ps(_mm_and_ps(bits, _mm_set1_ps(INFINITY)),
+                                    _mm_andnot_ps(bits, _mm_set1_ps(-INFINITY)));
+        tn = _mm_min_ps(tn, loose_lo);
+        tf = _mm_max_ps(tf, loose_hi);
+    }
+    /* Written out per axis (the compiler keeps the loop otherwise). */
+#define SLAB_AXIS(k)                                                                   \
+    tn = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->bounds[q->near_plane[k]]),    \
+                                          q->slab_org_near[k].v),                      \
+                               q->slab_inv[k].v),                                      \
+                    tn);                                                               \
+    tf = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->bounds[q->far_plane[k]]),     \
+                                          q->slab_org_far[k].v),                       \
+                               q->slab_inv[k].v),                                      \
+                    tf)
+    SLAB_AXIS(0);
+    SLAB_AXIS(1);
+    SLAB_AXIS(2);
+#undef SLAB_AXIS
+    unsigned mask = (unsigned)_mm_movemask_ps(_mm_cmple_ps(tn, tf));
+    if (n->loose != 0)
+        tn = _mm_min_ps(tn, loose_lo); /* stacked loose subtrees are never dropped */
+    _mm_storeu_ps(entry, tn);
+    return mask;
+#else
+    float tf[BVH_WIDTH];
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        int loose = (n->loose >> c) & 1u;
+        entry[c] = loose ? -INFINITY : q->slab_tmin.f[c];
+        tf[c] = loose ? INFINITY : q->slab_limit.f[c];
+    }
+    for (int k = 0; k < 3; k++) {
+        const float *near = n->bounds[q->near_plane[k]], *far = n->bounds[q->far_plane[k]];
+        float on = q->slab_org_near[k].f[0], of = q->slab_org_far[k].f[0];
+        float inv = q->slab_inv[k].f[0];
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            float t0 = (near[c] - on) * inv, t1 = (far[c] - of) * inv;
+            entry[c] = t0 > entry[c] ? t0 : entry[c];
+            tf[c] = t1 < tf[c] ? t1 : tf[c];
+        }
+    }
+    unsigned mask = 0;
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        mask |= (unsigned)(entry[c] <= tf[c]) << c;
+        if ((n->loose >> c) & 1u)
+            entry[c] = -INFINITY;
+    }
+    return mask;
+#endif
+}
+
+/*
+ * A depth-first traversal, nearest child first, from where w stands: a
+ * node's hit children are ordered by entry, the nearest visited next and
+ * the others stacked (farthest deepest); a leaf's faces are tested; a
+ * stacked subtree is dropped when the closest hit found since lies before
+ * its entry. Returns 0 when the traversal is over. With yield set it also
+ * stops (returning 1, w saved) each time it has moved to a child just
+ * asked for: the batch then runs other traversals while that child's
+ * memory arrives. Stacked references are not yielded on (they were asked
+ * for when pushed). The state lives in locals in between (registers).
+ */
+static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield)
 {
     const bvh_node *nodes = q->mesh->tree.nodes;
-    /* The four slab tests, on consecutive floats (near and far planes
-     * chosen per ray by the direction's signs), written as one loop per
-     * axis so that the compiler can run the children two at a time. A
-     * subtree with polygon faces is culled laterally only: its interval
-     * starts as the whole line. */
-    const float *near_x = n->bounds[q->near_plane[0]], *far_x = n->bounds[q->far_plane[0]];
-    const float *near_y = n->bounds[q->near_plane[1]], *far_y = n->bounds[q->far_plane[1]];
-    const float *near_z = n->bounds[q->near_plane[2]], *far_z = n->bounds[q->far_plane[2]];
-    double tn[BVH_WIDTH], tf[BVH_WIDTH];
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        tn[c] = q->ray->tmin;
-        tf[c] = q->t_limit;
-    }
-    if (n->loose != 0) {
-        for (int c = 0; c < BVH_WIDTH; c++) {
-            if ((n->loose >> c) & 1u) {
-                tn[c] = -INFINITY;
-                tf[c] = INFINITY;
+    int32_t ref = w->ref, count = w->count;
+    int sp = w->sp;
+    for (;;) {
+        if (ref >= 0) {
+            const bvh_node *n = &nodes[ref];
+            float tn[BVH_WIDTH];
+            unsigned mask = node_test(q, n, tn);
+            if (mask != 0) {
+                /* Ask for every hit child's first cache lines now: the
+                 * nearest is needed at once, the others when popped. (A
+                 * branch on the kind of child measured faster here than an
+                 * arithmetic select.) */
+                for (unsigned m = mask; m != 0; m &= m - 1) {
+                    int32_t r = n->child[lowest_bit[m]];
+                    const char *at = r >= 0 ? (const char *)&nodes[r]
+                                            : (const char *)&q->mesh->prims[~r];
+                    PREFETCH(at);
+                }
+                /* Most visits hit one or two children: those without a
+                 * sort; three or four by insertion. */
+                int first = lowest_bit[mask];
+                unsigned rest = mask & (mask - 1);
+                if (rest == 0) {
+                    ref = n->child[first];
+                    count = n->count[first];
+                } else {
+                    node_ref a = { n->child[first], n->count[first], tn[first] };
+                    int second = lowest_bit[rest];
+                    node_ref b = { n->child[second], n->count[second], tn[second] };
+                    rest &= rest - 1;
+                    node_ref near;
+                    if (rest == 0) {
+                        int swap = b.entry < a.entry;
+                        w->stack[sp++] = swap ? a : b;
+                        near = swap ? b : a;
+                    } else {
+                        node_ref next[BVH_WIDTH];
+                        next[0] = a;
+                        int k = 1;
+                        for (unsigned m = mask & (mask - 1); m != 0; m &= m - 1) {
+                            int c = lowest_bit[m];
+                            node_ref r = { n->child[c], n->count[c], tn[c] };
+                            int j = k++;
+                            for (; j > 0 && next[j - 1].entry > r.entry; j--)
+                                next[j] = next[j - 1];
+                            next[j] = r;
+                        }
+                        for (int j = k - 1; j > 0; j--)
+                            w->stack[sp++] = next[j];
+                        near = next[0];
+                    }
+                    ref = near.ref;
+                    count = near.count;
+                }
+                if (yield) {
+                    w->ref = ref;
+                    w->count = count;
+                    w->sp = sp;
+                    return 1;
+                }
+                continue;
+            }
+        } else if (count > 0 && query_leaf(q, mode, ~ref, count)) {
+            return 0;
+        }
+        for (;;) {
+            if (sp == 0)
+                return 0;
+            node_ref r = w->stack[--sp];
+            if (!(r.entry > q->slab_limit.f[0])) {
+                ref = r.ref;
+                count = r.count;
+                break;
             }
         }
     }
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        double t0 = ((double)near_x[c] - q->org_near[0]) * q->inv_dir[0];
-        double t1 = ((double)far_x[c] - q->org_far[0]) * q->inv_dir[0];
-        tn[c] = t0 > tn[c] ? t0 : tn[c];
-        tf[c] = t1 < tf[c] ? t1 : tf[c];
-    }
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        double t0 = ((double)near_y[c] - q->org_near[1]) * q->inv_dir[1];
-        double t1 = ((double)far_y[c] - q->org_far[1]) * q->inv_dir[1];
-        tn[c] = t0 > tn[c] ? t0 : tn[c];
-        tf[c] = t1 < tf[c] ? t1 : tf[c];
-    }
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        double t0 = ((double)near_z[c] - q->org_near[2]) * q->inv_dir[2];
-        double t1 = ((double)far_z[c] - q->org_far[2]) * q->inv_dir[2];
-        tn[c] = t0 > tn[c] ? t0 : tn[c];
-        tf[c] = t1 < tf[c] ? t1 : tf[c];
-    }
-    unsigned mask = 0;
-    for (int c = 0; c < BVH_WIDTH; c++)
-        mask |= (unsigned)(tn[c] <= tf[c]) << c;
-    if (mask == 0)
-        return 0;
-    /* Stacked loose subtrees are never dropped by t. */
-    if (n->loose != 0)
-        for (int c = 0; c < BVH_WIDTH; c++)
-            if ((n->loose >> c) & 1u)
-                tn[c] = -INFINITY;
-    /* Ask for every hit child's first cache lines now: the nearest is
-     * needed at once, the others when popped. */
-    for (unsigned m = mask; m != 0; m &= m - 1) {
-        int32_t r = n->child[lowest_bit[m]];
-        /* A select, not a branch: which kind of child is unpredictable. */
-        const char *at = r >= 0 ? (const char *)&nodes[r] : (const char *)&q->mesh->prims[~r];
-        PREFETCH(at);
-    }
-    /* Most visits hit one or two children: those without a sort; three or
-     * four by insertion. */
-    int first = lowest_bit[mask];
-    unsigned rest = mask & (mask - 1);
-    node_ref a = { n->child[first], n->count[first], tn[first] };
-    if (rest == 0) {
-        w->cur = a;
-        return 1;
-    }
-    int second = lowest_bit[rest];
-    rest &= rest - 1;
-    node_ref b = { n->child[second], n->count[second], tn[second] };
-    if (rest == 0) {
-        int swap = b.entry < a.entry;
-        w->stack[w->sp++] = swap ? a : b;
-        w->cur = swap ? b : a;
-        return 1;
-    }
-    node_ref next[BVH_WIDTH];
-    next[0] = a;
-    int count = 1;
-    for (unsigned m = mask & (mask - 1); m != 0; m &= m - 1) {
-        int c = lowest_bit[m];
-        node_ref r = { n->child[c], n->count[c], tn[c] };
-        int j = count++;
-        for (; j > 0 && next[j - 1].entry > r.entry; j--)
-            next[j] = next[j - 1];
-        next[j] = r;
-    }
-    for (int j = count - 1; j > 0; j--)
-        w->stack[w->sp++] = next[j];
-    w->cur = next[0];
-    return 1;
-}
-
-/* One step of a depth-first traversal, nearest child first: visits w->cur
- * (a node's children, or a leaf's faces) and moves w->cur on; a stacked
- * subtree is dropped when the closest hit found since lies before its
- * entry. 0 when the traversal is over. */
-static inline int query_step(query *q, walker *w, int mode)
-{
-    node_ref cur = w->cur;
-    if (cur.ref >= 0) {
-        if (visit_node(q, w, &q->mesh->tree.nodes[cur.ref]))
-            return 1;
-    } else if (cur.count > 0 && query_leaf(q, mode, ~cur.ref, cur.count)) {
-        return 0;
-    }
-    do {
-        if (w->sp == 0)
-            return 0;
-        cur = w->stack[--w->sp];
-    } while (cur.entry > q->t_limit);
-    w->cur = cur;
-    return 1;
 }
 
 static void query_run(query *q, int mode)
 {
     walker w;
     walker_init(&w);
-    while (query_step(q, &w, mode)) {
-    }
+    walk(q, &w, mode, 0);
 }
 
 int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
@@ -486,49 +711,47 @@ int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray 
 
 /* ---------------------------------------------------------------- batch
  *
- * Closest (or any) hits of many rays, BATCH_LANES traversals in flight at
- * once, taking one step each in turn. A large mesh's traversal waits on one
- * cache miss per node; the prefetch a step issues for its next node
- * completes while the other lanes step, so the misses of several rays
- * overlap. Each lane runs exactly the steps mesh_hit_first runs, so every
- * record is bit for bit the one the scalar path gives; rays are handled as
- * isect_intersect_batch does (ray_check, transform, ISECT_INVALID and
- * ISECT_MISS records).
+ * isect_intersect_batch for a mesh (the family's first_batch): closest (or
+ * any) hits of many rays, BATCH_LANES traversals in flight at once, taking
+ * one step each in turn. A large mesh's traversal waits on one cache miss
+ * per node; the prefetch a step issues for its next node completes while
+ * the other lanes step, so the misses of several rays overlap. Each lane
+ * runs exactly the steps mesh_hit_first runs (query_init, the tmin > tmax
+ * miss, query_run's steps one at a time; no state is shared between
+ * lanes), and each ray passes ray_check, shape_object_ray, batch_record and
+ * shape_hits_to_world as batch.c's per-ray loop over shape_ray_first does,
+ * so every record and the returned count are bit for bit that loop's. Rays
+ * finish out of order; each writes only its own record.
  */
 #define BATCH_LANES 8
 
 typedef struct lane {
     query     q;
     walker    w;
-    isect_ray object; /* the ray in object space */
+    isect_ray object; /* the transformed ray, if the shape has a transform */
     int64_t   index;
 } lane;
 
 /* Starts the next ray that needs a traversal (writing the records of the
- * ones that do not); 0 when there is none left. */
+ * ones that do not; *hit_count is unchanged by them: they are misses or
+ * invalid); 0 when there is none left. */
 static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int64_t n,
                       int64_t *next, const isect_params *prm, isect_hit *closest)
 {
     while (*next < n) {
         int64_t i = (*next)++;
-        int status = ray_check(&rays[i]);
-        if (status == ISECT_OK) {
-            if (s->xform != NULL) {
-                xform_ray_unchecked(s->xform, &rays[i], &l->object);
-                status = ray_check(&l->object);
-            } else {
-                l->object = rays[i];
-            }
-        }
+        const isect_ray *r = &rays[i];
+        int status = ray_check(r);
+        if (status == ISECT_OK)
+            status = shape_object_ray(s, r, &l->object, &r);
+        /* mesh_hit_first's early miss. */
+        if (status == ISECT_OK && !(r->tmin <= r->tmax))
+            status = 0;
         if (status != ISECT_OK) {
-            hit_set_miss(&closest[i], ISECT_INVALID);
+            batch_record(&closest[i], status);
             continue;
         }
-        if (!(l->object.tmin <= l->object.tmax)) {
-            hit_set_miss(&closest[i], ISECT_MISS);
-            continue;
-        }
-        query_init(&l->q, s->mesh, &l->object, prm);
+        query_init(&l->q, s->mesh, r, prm);
         walker_init(&l->w);
         l->index = i;
         return 1;
@@ -551,17 +774,15 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     }
     while (live > 0) {
         for (int l = 0; l < BATCH_LANES; l++) {
-            if (!active[l] || query_step(&lanes[l].q, &lanes[l].w, mode))
+            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, mode, 1))
                 continue;
             isect_hit *out = &closest[lanes[l].index];
-            if (lanes[l].q.found) {
+            int found = lanes[l].q.found;
+            if (found) {
                 *out = lanes[l].q.best;
-                if (s->xform != NULL)
-                    xform_hits_unchecked(s->xform, out, 1);
-                hit_count++;
-            } else {
-                hit_set_miss(out, ISECT_MISS);
+                shape_hits_to_world(s, out, 1);
             }
+            hit_count += batch_record(out, found);
             active[l] = lane_start(&lanes[l], s, rays, n, &next, prm, closest);
             live -= !active[l];
         }

@@ -24,6 +24,22 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
                         const double a[3], const double b[3], const double c[3],
                         isect_hit *out);
 
+/* The plane triangle_hit_framed computes for a, b, c, for callers that
+ * keep it per face (a mesh): the unit normal of (b - a) x (c - a) and 1,
+ * with *nonzero 1 when the exact cross product is certainly nonzero (else
+ * 0: the test then decides collinearity exactly); or 0 for a rounded cross
+ * product of zero, a triangle triangle_hit_framed never hits. */
+int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
+                   int *nonzero);
+
+/* triangle_hit_framed with the plane given: normal and nonzero from
+ * triangle_plane(a, b, c) returning 1 (nonzero may also be 1 when a, b, c
+ * are known not to be collinear): bit for bit its result and record. */
+int triangle_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
+                              const isect_params *prm, const double a[3], const double b[3],
+                              const double c[3], const double normal[3], int nonzero,
+                              isect_hit *out);
+
 /* The plane of the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
  * v + 3*i; the caller has checked every idx[i]), n >= 3: unit Newell normal with vertices taken relative to the
  * centroid, and the centroid. 1, or 0 (normal and centroid zero) for a

@@ -35,6 +35,10 @@ struct shape_family {
     /* All hits in range, sorted, the first cap written; and the first alone. */
     hits_all_fn hits_all;
     hit_first_fn hit_first;
+    /* Optional: isect_intersect_batch's closest (any) hits of many rays at
+     * once, bit for bit the records and count of the per-ray loop over
+     * hit_first (batch.c); NULL: that loop. */
+    first_batch_fn first_batch;
     enum solidity solidity;
     int uses_n;     /* isect_shape.n carries a count */
     int uses_flags; /* isect_shape.flags carries a rule or ISECT_CAPPED */
@@ -92,10 +96,10 @@ static int analytic_hit_first(const shape_family *f, const isect_shape *s,
 
 #define FAMILY(X, solidity, uses_n, uses_flags)                                 \
     { X##_check, X##_hits, X##_contains, analytic_hits_all, analytic_hit_first, \
-      solidity, uses_n, uses_flags }
+      NULL, solidity, uses_n, uses_flags }
 #define THIN_FAMILY(X, uses_n, uses_flags)                                      \
     { X##_check, X##_hits, NULL, analytic_hits_all, analytic_hit_first,         \
-      SURFACE_THIN, uses_n, uses_flags }
+      NULL, SURFACE_THIN, uses_n, uses_flags }
 
 /* Indexed by shape type; entry 0 is empty so a zeroed descriptor is rejected. */
 static const shape_family families[ISECT_MESH + 1] = {
@@ -110,7 +114,7 @@ static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_ELLIPSOID]    = FAMILY(ellipsoid, SURFACE_SOLID, 0, 0),
     [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
     [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_hits_all, mesh_hit_first,
-                             SURFACE_SOLID_IF_CLOSED, 0, 0 },
+                             mesh_hit_first_batch, SURFACE_SOLID_IF_CLOSED, 0, 0 },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
@@ -148,10 +152,13 @@ const shape_family *query_prepare(const isect_shape *s, const isect_opts *opts,
     return *status == ISECT_OK ? shape_prepare(s, status) : NULL;
 }
 
-/* The object-space ray of a valid world ray: *r points at ray itself, or at
- * tmp holding the transformed ray. A huge inverse can overflow a fine ray. */
-static int object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
-                      const isect_ray **r)
+first_batch_fn shape_first_batch(const shape_family *f)
+{
+    return f->first_batch;
+}
+
+int shape_object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
+                     const isect_ray **r)
 {
     *r = ray;
     if (s->xform == NULL)
@@ -169,12 +176,12 @@ int64_t shape_ray_hits(const shape_family *f, const isect_shape *s, const isect_
 {
     isect_ray tmp;
     const isect_ray *r;
-    int status = object_ray(s, ray, &tmp, &r);
+    int status = shape_object_ray(s, ray, &tmp, &r);
     if (status != ISECT_OK)
         return status;
     int64_t count = f->hits_all(f, s, r, prm, hits, cap);
-    if (s->xform != NULL && count > 0)
-        xform_hits_unchecked(s->xform, hits, (int)(count < cap ? count : cap));
+    if (count > 0)
+        shape_hits_to_world(s, hits, count < cap ? count : cap);
     return count;
 }
 
@@ -183,12 +190,12 @@ int shape_ray_first(const shape_family *f, const isect_shape *s, const isect_ray
 {
     isect_ray tmp;
     const isect_ray *r;
-    int status = object_ray(s, ray, &tmp, &r);
+    int status = shape_object_ray(s, ray, &tmp, &r);
     if (status != ISECT_OK)
         return status;
     int found = f->hit_first(f, s, r, prm, out);
-    if (s->xform != NULL && found)
-        xform_hits_unchecked(s->xform, out, 1);
+    if (found > 0)
+        shape_hits_to_world(s, out, 1);
     return found;
 }
 
