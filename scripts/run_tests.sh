@@ -38,6 +38,13 @@ done
 for t in $B/san/tests/test_*; do
     [ -x "$t" ] && step "$(basename "$t") [asan+ubsan]" "$t"
 done
+# The portable code that SSE replaces on x86-64 (BVH build and node test),
+# built with ISECT_NO_SIMD and held to the same mesh tests.
+step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
+    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once
+for t in test_mesh test_mesh_exactly_once; do
+    [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
+done
 if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json

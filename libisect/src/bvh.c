@@ -19,6 +19,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The boxes of the build grow four lanes at once with SSE (every x86-64
+ * has it); elsewhere, or with ISECT_NO_SIMD defined, lane by lane. Both
+ * compute the same float minima, maxima and centroids. */
+#if defined(__SSE2__) && !defined(ISECT_NO_SIMD)
+#define BVH_SSE 1
+#include <emmintrin.h>
+#else
+#define BVH_SSE 0
+#endif
+
 /* 32 bins for large ranges, 16 below (Wald 2007: 16 lose little quality). */
 #define BINS_MAX 32
 #define BINS_SMALL 16
@@ -31,7 +41,9 @@
  * and slower at 1.3M). */
 #define COST_TRAVERSE 1.5
 
-/* One item during the build: its box and where it came from. 32 bytes. */
+/* One item during the build: its box and where it came from. 32 bytes;
+ * lo and hi each start a 16-byte group (loaded as four lanes, the fourth
+ * masked off). */
 typedef struct build_ref {
     float   lo[3];
     int32_t item;
@@ -39,8 +51,9 @@ typedef struct build_ref {
     uint32_t flags;
 } build_ref;
 
+/* A box; the fourth lane of each corner is padding for the SSE code. */
 typedef struct aabbf {
-    float lo[3], hi[3];
+    float lo[4], hi[4];
 } aabbf;
 
 /* A node of the binary tree: the boxes of its two children. */
@@ -59,7 +72,9 @@ typedef struct builder {
 
 typedef struct split {
     int    axis;     /* -1: halve the range (no SAH split) */
-    int    bin;      /* items with bin index < bin go left */
+    int    bin;      /* items with bin index < bin go left; -1: the range is
+                        sorted (sweep_split) and its first `left` go left */
+    int64_t left;
     int    bins;
     float  origin;   /* centroid binning along axis: (c - origin) * scale */
     float  scale;
@@ -117,23 +132,63 @@ void bvh_box_from_double(const double lo[3], const double hi[3], float box[6])
 
 static void aabb_empty(aabbf *b)
 {
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         b->lo[k] = INFINITY;
         b->hi[k] = -INFINITY;
     }
 }
 
-static void aabb_grow(aabbf *b, const float lo[3], const float hi[3])
+#if BVH_SSE
+/* Four floats from p with lane 3 zeroed (in a ref that lane holds the item
+ * or flags bits, which as floats can be subnormal: slow on some
+ * processors, and never wanted). */
+static inline __m128 load_lanes3(const float *p)
 {
+    return _mm_and_ps(_mm_loadu_ps(p), _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)));
+}
+#endif
+
+/* Grows b by the box lo, hi; each points at four floats, lane 3 ignored. */
+static inline void aabb_grow(aabbf *b, const float *lo, const float *hi)
+{
+#if BVH_SSE
+    _mm_storeu_ps(b->lo, _mm_min_ps(load_lanes3(lo), _mm_loadu_ps(b->lo)));
+    _mm_storeu_ps(b->hi, _mm_max_ps(load_lanes3(hi), _mm_loadu_ps(b->hi)));
+#else
     for (int k = 0; k < 3; k++) {
         b->lo[k] = lo[k] < b->lo[k] ? lo[k] : b->lo[k];
         b->hi[k] = hi[k] > b->hi[k] ? hi[k] : b->hi[k];
     }
+#endif
+}
+
+/* The centroid of a ref's box, 0.5 lo + 0.5 hi (halved terms cannot
+ * overflow), in c[0..3); c[3] = 0. */
+static inline void ref_centroid(const build_ref *r, float c[4])
+{
+#if BVH_SSE
+    const __m128 half = _mm_set1_ps(0.5f);
+    _mm_storeu_ps(c, _mm_add_ps(_mm_mul_ps(half, load_lanes3(r->lo)),
+                                _mm_mul_ps(half, load_lanes3(r->hi))));
+#else
+    for (int k = 0; k < 3; k++)
+        c[k] = 0.5f * r->lo[k] + 0.5f * r->hi[k];
+    c[3] = 0.0f;
+#endif
+}
+
+/* Grows box by the ref's box and cen by its centroid. */
+static inline void aabb_grow_ref(aabbf *box, aabbf *cen, const build_ref *r)
+{
+    float c[4];
+    ref_centroid(r, c);
+    aabb_grow(box, r->lo, r->hi);
+    aabb_grow(cen, c, c);
 }
 
 static void aabb_union(aabbf *r, const aabbf *a, const aabbf *b)
 {
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         r->lo[k] = a->lo[k] < b->lo[k] ? a->lo[k] : b->lo[k];
         r->hi[k] = a->hi[k] > b->hi[k] ? a->hi[k] : b->hi[k];
     }
@@ -152,20 +207,22 @@ static double half_area(const aabbf *b)
     return dx * dy + dy * dz + dz * dx;
 }
 
-/* Centroid coordinate (halved sums do not overflow for finite floats). */
-static inline float ref_centroid(const build_ref *r, int k)
+/* One coordinate of the centroid, as ref_centroid computes it. */
+static inline float ref_centroid_axis(const build_ref *r, int k)
 {
     return 0.5f * r->lo[k] + 0.5f * r->hi[k];
 }
 
 /* The bin of a centroid; NaN and out-of-range values clamp (the float to
- * int conversion is only done on values known to be in range). */
+ * int conversion is only done on values in range). Written as selects the
+ * compiler turns into max and min, not branches. */
 static inline int bin_index(float c, float origin, float scale, int bins)
 {
     float f = (c - origin) * scale;
-    if (!(f > 0.0f))
-        return 0;
-    return f < (float)bins ? (int)f : bins - 1;
+    f = f > 0.0f ? f : 0.0f;
+    float last = (float)(bins - 1);
+    f = f < last ? f : last;
+    return (int)f;
 }
 
 /* The cheapest SAH split of refs[begin, end) with centroid box cbox along
@@ -200,7 +257,8 @@ static void find_split(const builder *b, int64_t begin, int64_t end, const aabbf
     }
     for (int64_t i = begin; i < end; i++) {
         const build_ref *r = &b->refs[i];
-        float c[3] = { ref_centroid(r, 0), ref_centroid(r, 1), ref_centroid(r, 2) };
+        float c[4];
+        ref_centroid(r, c);
         int j = bin_index(c[k], origin, scale, bins);
         count[j]++;
         aabb_grow(&box[j], r->lo, r->hi);
@@ -248,6 +306,67 @@ static void find_split(const builder *b, int64_t begin, int64_t end, const aabbf
     }
 }
 
+/* Ranges of at most SWEEP_MAX items, the bulk of the calls (a tree over n
+ * items has about n/2 of them): binning would spend more on its bins than
+ * on the items, so the range is sorted by centroid along the axis of the
+ * centroids' largest extent and every one of its n - 1 object splits is
+ * evaluated (the exact SAH sweep of MacDonald & Booth on that axis). The
+ * sort is the partition. */
+#define SWEEP_MAX 16
+
+static void sweep_split(builder *b, int64_t begin, int64_t end, const aabbf *cbox,
+                        split *best)
+{
+    best->axis = -1;
+    best->cost = INFINITY;
+    int k = 0;
+    for (int a = 1; a < 3; a++)
+        if (cbox->hi[a] - cbox->lo[a] > cbox->hi[k] - cbox->lo[k])
+            k = a;
+    float extent = cbox->hi[k] - cbox->lo[k];
+    if (!(extent > 0.0f && extent < INFINITY))
+        return;
+    build_ref *r = b->refs + begin;
+    int n = (int)(end - begin);
+    /* Insertion sort, stable: equal centroids keep their order. */
+    for (int i = 1; i < n; i++) {
+        build_ref x = r[i];
+        float key = ref_centroid_axis(&x, k);
+        int j = i;
+        for (; j > 0 && ref_centroid_axis(&r[j - 1], k) > key; j--)
+            r[j] = r[j - 1];
+        r[j] = x;
+    }
+    double right_area[SWEEP_MAX];
+    aabbf acc;
+    aabb_empty(&acc);
+    for (int i = n - 1; i > 0; i--) {
+        aabb_grow(&acc, r[i].lo, r[i].hi);
+        right_area[i] = half_area(&acc);
+    }
+    aabb_empty(&acc);
+    for (int i = 1; i < n; i++) {
+        aabb_grow(&acc, r[i - 1].lo, r[i - 1].hi);
+        double cost = half_area(&acc) * (double)i + right_area[i] * (double)(n - i);
+        if (cost < best->cost) {
+            best->cost = cost;
+            best->axis = k;
+            best->bin = -1;
+            best->left = i;
+        }
+    }
+    if (best->axis < 0)
+        return;
+    for (int side = 0; side < 2; side++) {
+        aabb_empty(&best->box[side]);
+        aabb_empty(&best->cbox[side]);
+    }
+    for (int i = 0; i < n; i++) {
+        int side = i >= best->left;
+        aabb_grow_ref(&best->box[side], &best->cbox[side], &r[i]);
+    }
+}
+
 /* Partition refs[begin, end) by the split (or halve it for axis -1) and
  * return the boundary; the sides' boxes and centroid boxes are the split's
  * (from the bins) or, for a halving, computed here. */
@@ -262,10 +381,7 @@ static int64_t partition(builder *b, int64_t begin, int64_t end, const split *s,
         int64_t mid = begin + (end - begin) / 2;
         for (int64_t i = begin; i < end; i++) {
             const build_ref *r = &b->refs[i];
-            int side = i >= mid;
-            float c[3] = { ref_centroid(r, 0), ref_centroid(r, 1), ref_centroid(r, 2) };
-            aabb_grow(&box[side], r->lo, r->hi);
-            aabb_grow(&cbox[side], c, c);
+            aabb_grow_ref(&box[i >= mid], &cbox[i >= mid], r);
         }
         return mid;
     }
@@ -273,19 +389,24 @@ static int64_t partition(builder *b, int64_t begin, int64_t end, const split *s,
         box[side] = s->box[side];
         cbox[side] = s->cbox[side];
     }
-    int64_t i = begin, j = end - 1;
-    while (i <= j) {
-        build_ref *r = &b->refs[i];
-        if (bin_index(ref_centroid(r, s->axis), s->origin, s->scale, s->bins) < s->bin) {
-            i++;
-        } else {
-            build_ref tmp = *r;
-            *r = b->refs[j];
-            b->refs[j] = tmp;
-            j--;
-        }
+    if (s->bin < 0)
+        return begin + s->left; /* sorted by sweep_split */
+    /* Lomuto's scheme without a branch: every item is swapped with the
+     * first right-side one (itself or another right-side item when it goes
+     * right) and the boundary moves by its side. Which side an item takes
+     * is as random as the items' order, so a branch on it would be
+     * mispredicted half the time. */
+    build_ref *r = b->refs;
+    int64_t mid = begin;
+    for (int64_t i = begin; i < end; i++) {
+        build_ref x = r[i];
+        int left = bin_index(ref_centroid_axis(&x, s->axis), s->origin, s->scale, s->bins)
+                 < s->bin;
+        r[i] = r[mid];
+        r[mid] = x;
+        mid += left;
     }
-    return i;
+    return mid;
 }
 
 /* Builds refs[begin, end) (box: their union) and returns the reference a
@@ -298,8 +419,12 @@ static uint8_t build_range(builder *b, int64_t begin, int64_t end, const aabbf *
     split s;
     s.axis = -1;
     s.cost = INFINITY;
-    if (n > 1 && depth < BVH_MEDIAN_DEPTH)
-        find_split(b, begin, end, cbox, &s);
+    if (n > 1 && depth < BVH_MEDIAN_DEPTH) {
+        if (n <= SWEEP_MAX)
+            sweep_split(b, begin, end, cbox, &s);
+        else
+            find_split(b, begin, end, cbox, &s);
+    }
     /* Leaf when small and no split beats testing every item:
      * n <= COST_TRAVERSE + (aL nL + aR nR) / a (all in item-test units). */
     if (n <= BVH_MAX_LEAF
@@ -435,9 +560,7 @@ int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t 
         memcpy(r->hi, boxes[i] + 3, 3 * sizeof(float));
         r->item = (int32_t)i;
         r->flags = flags != NULL ? flags[i] : 0u;
-        float c[3] = { ref_centroid(r, 0), ref_centroid(r, 1), ref_centroid(r, 2) };
-        aabb_grow(&box, r->lo, r->hi);
-        aabb_grow(&cbox, c, c);
+        aabb_grow_ref(&box, &cbox, r);
     }
     int32_t root_ref;
     uint8_t root_count;
