@@ -83,14 +83,14 @@
 
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2.0)
 
-/* The node test's range (D and max|dir| as powers of two), its origin
- * shifts in units of D (steep and flat axes), the ratio below which a
- * direction component counts as flat, and the bound of the scaled time of
- * every hit that matters (see "The node test" above). */
-#define SLAB_D_MIN 0x1p-100
-#define SLAB_D_MAX 0x1p100
-#define SLAB_DIR_MIN 0x1p-900
-#define SLAB_DIR_MAX 0x1p900
+/* The node test's range (the binary exponents of D and of max|dir|), its
+ * origin shifts in units of D (steep and flat axes), the ratio below which
+ * a direction component counts as flat, and the bound it puts on scaled
+ * times (see "The node test" above). */
+#define SLAB_D_EXP_MIN (-100)
+#define SLAB_D_EXP_MAX 99
+#define SLAB_DIR_EXP_MIN (-900)
+#define SLAB_DIR_EXP_MAX 899
 #define SLAB_PAD 0x1p-20
 #define SLAB_PAD_FLAT 0x1p-18
 #define SLAB_FLAT 0x1p-20
@@ -122,6 +122,8 @@ typedef struct node_ref {
 
 typedef struct query {
     const isect_mesh   *mesh;
+    const bvh_node     *nodes;  /* the mesh's, for the traversal */
+    const mesh_prim    *prims;
     const isect_ray    *ray;
     const isect_params *prm;
     ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
@@ -134,8 +136,10 @@ typedef struct query {
     slab4  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
                                      down and up */
     double slab_scale;            /* 1 / sigma; 0: the node test culls nothing */
-    int    near_plane[3], far_plane[3]; /* index into a node's 6 bounds */
-    /* Pre-filter. */
+    int32_t plane_offset[6];      /* byte offsets in bvh_node.bounds of the near
+                                     planes x, y, z, then the far ones */
+    double d;                     /* D, as the bounds above use it */
+    /* Pre-filter (set with the frame, at the first leaf). */
     double edge_bound;
     int    cull_back;
     /* Results. */
@@ -188,28 +192,51 @@ static inline void slab_set_limit(query *q, double t)
         q->slab_limit.f[c] = limit;
 }
 
-static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
-                       const isect_params *prm)
+/* plane_offset for the signs of dir (bit k set: dir_k < 0): the near plane
+ * of axis k is lo_k for a positive component and hi_k for a negative one. */
+#define PLANE_BYTES ((int32_t)sizeof(((bvh_node *)0)->bounds[0]))
+#define PLANE_OFFSETS(o)                                                              \
+    { PLANE_BYTES * (0 + 3 * ((o) & 1)), PLANE_BYTES * (1 + 3 * ((o) >> 1 & 1)),      \
+      PLANE_BYTES * (2 + 3 * ((o) >> 2 & 1)), PLANE_BYTES * (3 - 3 * ((o) & 1)),      \
+      PLANE_BYTES * (4 - 3 * ((o) >> 1 & 1)), PLANE_BYTES * (5 - 3 * ((o) >> 2 & 1)) }
+static const int32_t plane_offsets[8][6] = {
+    PLANE_OFFSETS(0), PLANE_OFFSETS(1), PLANE_OFFSETS(2), PLANE_OFFSETS(3),
+    PLANE_OFFSETS(4), PLANE_OFFSETS(5), PLANE_OFFSETS(6), PLANE_OFFSETS(7),
+};
+
+/* Outside the node test's range: a test that passes every child. With a
+ * zero origin and reciprocal each slab time is (b - 0) * 0, which is 0 for
+ * a finite bound and NaN (no constraint) for an infinite one; with tmin
+ * -inf and limit +inf every child passes. */
+static void slab_init_unbounded(query *q)
 {
-    q->mesh = m;
-    q->ray = ray;
-    q->prm = prm;
-    q->frame_ready = 0;
-    /* The node test: in range, scaled time tau = t / sigma with sigma =
-     * 2^e putting sigma max|dir| in [2^E, 2^(E+1)) where D is; else a
-     * test that passes every child (slab_scale 0). Per axis: flat when
-     * |dir_k| < 2^-20 max|dir|; the origin moved by the pad (flat: the
-     * flat pad) toward the near and the far plane; the scaled reciprocal
-     * 1 / (dir_k sigma), which for a steep axis is fl(1 / dir_k) 2^-e
-     * exactly (a power of two, no under- or overflow in range), and for a
-     * flat one +-inf by the sign of dir_k. */
+    memset(q->slab_org_near, 0, sizeof q->slab_org_near);
+    memset(q->slab_org_far, 0, sizeof q->slab_org_far);
+    memset(q->slab_inv, 0, sizeof q->slab_inv);
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        q->slab_tmin.f[c] = -INFINITY;
+        q->slab_limit.f[c] = INFINITY;
+    }
+    q->slab_scale = 0.0;
+    memcpy(q->plane_offset, plane_offsets[0], sizeof q->plane_offset);
+}
+
+/* The node test's constants for a ray (see "The node test" above): D;
+ * sigma = 2^e with e the difference of the exponents of D and max|dir|;
+ * per axis, flat when |dir_k| < 2^-20 max|dir|, the origin moved by the
+ * pad (flat: the flat pad) toward the near and toward the far plane, and
+ * the scaled reciprocal 1 / (dir_k sigma): fl(1 / dir_k) 2^-e exactly for
+ * a steep axis (a power of two, no under- or overflow in range), +-inf by
+ * the sign of dir_k for a flat one. */
+static void slab_init(query *q, double coord_bound, const isect_ray *ray)
+{
 #if MESH_SSE
-    /* Axes x, y in one register and z in another: the same double
-     * operations as the portable code below, without its branches. */
+    /* Axes x, y in one register and z in the low lane of another: the
+     * same double operations as the portable code below, without its
+     * branches. */
     const __m128d sign = _mm_set1_pd(-0.0);
     __m128d dxy = _mm_loadu_pd(ray->dir), dzz = _mm_load1_pd(ray->dir + 2);
     __m128d oxy = _mm_loadu_pd(ray->org), ozz = _mm_load1_pd(ray->org + 2);
-    __m128d ixy = _mm_div_pd(_mm_set1_pd(1.0), dxy), izz = _mm_div_pd(_mm_set1_pd(1.0), dzz);
     __m128d adxy = _mm_andnot_pd(sign, dxy), adzz = _mm_andnot_pd(sign, dzz);
     __m128d ao = _mm_max_pd(_mm_andnot_pd(sign, oxy), _mm_andnot_pd(sign, ozz));
     __m128d ad = _mm_max_pd(adxy, adzz);
@@ -222,12 +249,17 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
         dir_max = fabs(ray->dir[k]) > dir_max ? fabs(ray->dir[k]) : dir_max;
     }
 #endif
-    double d = (org_max + m->coord_bound) * (1.0 + 4.0 * UNIT_ROUNDOFF);
-    int in_range = d >= SLAB_D_MIN && d <= SLAB_D_MAX && dir_max >= SLAB_DIR_MIN
-                && dir_max <= SLAB_DIR_MAX;
-    int e = in_range ? exponent_of(d) - exponent_of(dir_max) : 0;
-    double scale = power_of_two(-e), flat_below = SLAB_FLAT * dir_max;
-    q->slab_scale = in_range ? scale : 0.0;
+    double d = (org_max + coord_bound) * (1.0 + 4.0 * UNIT_ROUNDOFF);
+    q->d = d;
+    /* In range when both exponents are (zero, subnormal, infinite: not). */
+    int ed = exponent_of(d), ev = exponent_of(dir_max);
+    if ((unsigned)(ed - SLAB_D_EXP_MIN) > (unsigned)(SLAB_D_EXP_MAX - SLAB_D_EXP_MIN)
+        || (unsigned)(ev - SLAB_DIR_EXP_MIN) > (unsigned)(SLAB_DIR_EXP_MAX - SLAB_DIR_EXP_MIN)) {
+        slab_init_unbounded(q);
+        return;
+    }
+    double scale = power_of_two(ev - ed), flat_below = SLAB_FLAT * dir_max;
+    q->slab_scale = scale;
 #if MESH_SSE
     __m128d vfb = _mm_set1_pd(flat_below), vscale = _mm_set1_pd(scale);
     __m128d flat_xy = _mm_cmplt_pd(adxy, vfb), flat_zz = _mm_cmplt_pd(adzz, vfb);
@@ -243,8 +275,9 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
                               _mm_cvtpd_ps(_mm_add_pd(ozz, toward_zz)));
     __m128 of = _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(oxy, toward_xy)),
                               _mm_cvtpd_ps(_mm_sub_pd(ozz, toward_zz)));
-    __m128 steep_inv = _mm_movelh_ps(_mm_cvtpd_ps(_mm_mul_pd(ixy, vscale)),
-                                     _mm_cvtpd_ps(_mm_mul_pd(izz, vscale)));
+    __m128d one = _mm_set1_pd(1.0);
+    __m128 steep_inv = _mm_movelh_ps(_mm_cvtpd_ps(_mm_mul_pd(_mm_div_pd(one, dxy), vscale)),
+                                     _mm_cvtpd_ps(_mm_mul_pd(_mm_div_pd(one, dzz), vscale)));
     __m128 flat_inv = _mm_or_ps(_mm_set1_ps(INFINITY),
                                 _mm_and_ps(_mm_set1_ps(-0.0f),
                                            _mm_movelh_ps(_mm_cvtpd_ps(dxy), _mm_cvtpd_ps(dzz))));
@@ -263,12 +296,10 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
     q->slab_inv[1].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(1, 1, 1, 1));
     q->slab_inv[2].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(2, 2, 2, 2));
     int negative = _mm_movemask_pd(dxy) | (_mm_movemask_pd(dzz) & 1) << 2;
-    for (int k = 0; k < 3; k++) {
-        int neg = (negative >> k) & 1;
-        q->near_plane[k] = k + 3 * neg;
-        q->far_plane[k] = k + 3 - 3 * neg;
-    }
+    q->slab_tmin.v = _mm_set1_ps(slab_time_down(ray->tmin * scale));
+    q->slab_limit.v = _mm_set1_ps(slab_time_up(ray->tmax * scale));
 #else
+    int negative = 0;
     for (int k = 0; k < 3; k++) {
         double dk = ray->dir[k];
         int flat = fabs(dk) < flat_below;
@@ -280,33 +311,47 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
             q->slab_org_far[k].f[c] = of;
             q->slab_inv[k].f[c] = ik;
         }
-        int negative = signbit(dk) != 0;
-        q->near_plane[k] = negative ? k + 3 : k;
-        q->far_plane[k] = negative ? k : k + 3;
+        negative |= (signbit(dk) != 0) << k;
+    }
+    float tmin = slab_time_down(ray->tmin * scale), limit = slab_time_up(ray->tmax * scale);
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        q->slab_tmin.f[c] = tmin;
+        q->slab_limit.f[c] = limit;
     }
 #endif
-    if (!in_range) {
-        /* (b - 0) * 0: 0 for every finite bound, NaN (no constraint) for an
-         * infinite one; with tmin -inf and limit +inf every child passes. */
-        memset(q->slab_org_near, 0, sizeof q->slab_org_near);
-        memset(q->slab_org_far, 0, sizeof q->slab_org_far);
-        memset(q->slab_inv, 0, sizeof q->slab_inv);
-    }
-    float tmin = in_range ? slab_time_down(ray->tmin * q->slab_scale) : -INFINITY;
-    for (int c = 0; c < BVH_WIDTH; c++)
-        q->slab_tmin.f[c] = tmin;
-    slab_set_limit(q, ray->tmax);
-    /* d * d may overflow (infinite bound: every triangle goes to the exact
-     * test) or, near zero, underflow below the floor. */
-    q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * d * d;
-    if (!(q->edge_bound > EDGE_BOUND_FLOOR))
-        q->edge_bound = isnan(q->edge_bound) ? INFINITY : EDGE_BOUND_FLOOR;
-    q->cull_back = (prm->flags & ISECT_CULL_BACK) != 0;
+    memcpy(q->plane_offset, plane_offsets[negative], sizeof q->plane_offset);
+}
+
+static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
+                       const isect_params *prm)
+{
+    q->mesh = m;
+    q->nodes = m->tree.nodes;
+    q->prims = m->prims;
+    q->ray = ray;
+    q->prm = prm;
+    q->frame_ready = 0;
     q->t_limit = ray->tmax;
     q->found = 0;
     q->count = 0;
     q->hits = NULL;
     q->cap = 0;
+    slab_init(q, m->coord_bound, ray);
+}
+
+/* What the faces' tests need, made at the first leaf: the frame (without
+ * |dir|: triangle_hit_framed's parallel test needs it only for a nearly
+ * parallel face and then computes it itself) and the pre-filter's bound.
+ * d * d may overflow (infinite bound: every triangle goes to the exact
+ * test) or, near zero, underflow below the floor. */
+static void query_leaf_init(query *q)
+{
+    ray_frame_shear_no_len(q->ray, &q->frame);
+    q->frame_ready = 1;
+    q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * q->d * q->d;
+    if (!(q->edge_bound > EDGE_BOUND_FLOOR))
+        q->edge_bound = isnan(q->edge_bound) ? INFINITY : EDGE_BOUND_FLOOR;
+    q->cull_back = (q->prm->flags & ISECT_CULL_BACK) != 0;
 }
 
 /* 0 when the exact triangle test certainly rejects the triangle or its
@@ -427,12 +472,8 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 {
     const isect_mesh *m = q->mesh;
     const isect_ray *ray = q->ray;
-    if (!q->frame_ready) {
-        /* Without |dir|: triangle_hit_framed's parallel test needs it
-         * only for a nearly parallel face and then computes it itself. */
-        ray_frame_shear_no_len(ray, &q->frame);
-        q->frame_ready = 1;
-    }
+    if (!q->frame_ready)
+        query_leaf_init(q);
     for (int32_t i = 0; i < count; i++) {
         const mesh_prim *p = &m->prims[first + i];
         isect_hit h;
@@ -468,14 +509,12 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
     return 0;
 }
 
-/* A hint to start loading memory the traversal will soon read: the first
- * three cache lines of a node (its two) or of a leaf (its first two or
- * three prims). Traversal of a large mesh is bound by the latency of these
- * loads; the hint overlaps them with other work. GCC and clang only;
- * elsewhere nothing. */
+/* A hint to start loading memory the traversal will soon read: two cache
+ * lines, a whole node or a leaf's first prims. Traversal of a large mesh is
+ * bound by the latency of these loads; the hint overlaps them with other
+ * work. GCC and clang only; elsewhere nothing. */
 #if defined(__GNUC__) || defined(__clang__)
-#define PREFETCH(p)                                                                  \
-    (__builtin_prefetch(p), __builtin_prefetch((p) + 64), __builtin_prefetch((p) + 128))
+#define PREFETCH(p) (__builtin_prefetch(p), __builtin_prefetch((p) + 64))
 #else
 #define PREFETCH(p) ((void)(p))
 #endif
@@ -506,17 +545,25 @@ static void walker_init(walker *w)
     w->sp = 0;
 }
 
+/* The four floats of a plane of node n's bounds, by byte offset. */
+static inline const float *node_plane(const bvh_node *n, int32_t offset)
+{
+    return (const float *)(const void *)((const char *)n->bounds + offset);
+}
+
 /* The node test of node n's four children: bit c set when child c may
  * hold a hit that matters, entry[c] where the ray enters its padded box
  * (scaled time, -inf for a loose child). A NaN from 0 * inf (a flat axis
  * on a slab plane) is the first operand of max and min, which then return
- * the second: that slab does not constrain the interval. */
-static inline unsigned node_test(const query *q, const bvh_node *n, float entry[BVH_WIDTH])
+ * the second: that slab does not constrain the interval. may_loose is a
+ * constant: 0 for a mesh without polygon faces (no node is loose). */
+static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
+                                        float entry[BVH_WIDTH], int may_loose)
 {
 #if MESH_SSE
     __m128 tn = q->slab_tmin.v, tf = q->slab_limit.v;
     __m128 loose_lo = tf; /* (unused unless n->loose) */
-    if (n->loose != 0) {
+    if (may_loose && n->loose != 0) {
         /* A loose child's interval starts as the whole line. */
         __m128 bits = _mm_castsi128_ps(_mm_set_epi32(
             -(int32_t)((n->loose >> 3) & 1u), -(int32_t)((n->loose >> 2) & 1u),
@@ -529,33 +576,35 @@ static inline unsigned node_test(const query *q, const bvh_node *n, float entry[
         tf = _mm_max_ps(tf, loose_hi);
     }
     /* Written out per axis (the compiler keeps the loop otherwise). */
-#define SLAB_AXIS(k)                                                                   \
-    tn = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->bounds[q->near_plane[k]]),    \
-                                          q->slab_org_near[k].v),                      \
-                               q->slab_inv[k].v),                                      \
-                    tn);                                                               \
-    tf = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n->bounds[q->far_plane[k]]),     \
-                                          q->slab_org_far[k].v),                       \
-                               q->slab_inv[k].v),                                      \
+#define SLAB_AXIS(k)                                                                      \
+    tn = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[k])), \
+                                          q->slab_org_near[k].v),                         \
+                               q->slab_inv[k].v),                                         \
+                    tn);                                                                  \
+    tf = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[3 + k])), \
+                                          q->slab_org_far[k].v),                          \
+                               q->slab_inv[k].v),                                         \
                     tf)
     SLAB_AXIS(0);
     SLAB_AXIS(1);
     SLAB_AXIS(2);
 #undef SLAB_AXIS
     unsigned mask = (unsigned)_mm_movemask_ps(_mm_cmple_ps(tn, tf));
-    if (n->loose != 0)
+    if (may_loose && n->loose != 0)
         tn = _mm_min_ps(tn, loose_lo); /* stacked loose subtrees are never dropped */
     _mm_storeu_ps(entry, tn);
     return mask;
 #else
     float tf[BVH_WIDTH];
+    unsigned loose = may_loose ? n->loose : 0u;
     for (int c = 0; c < BVH_WIDTH; c++) {
-        int loose = (n->loose >> c) & 1u;
-        entry[c] = loose ? -INFINITY : q->slab_tmin.f[c];
-        tf[c] = loose ? INFINITY : q->slab_limit.f[c];
+        int lc = (loose >> c) & 1u;
+        entry[c] = lc ? -INFINITY : q->slab_tmin.f[c];
+        tf[c] = lc ? INFINITY : q->slab_limit.f[c];
     }
     for (int k = 0; k < 3; k++) {
-        const float *near = n->bounds[q->near_plane[k]], *far = n->bounds[q->far_plane[k]];
+        const float *near = node_plane(n, q->plane_offset[k]);
+        const float *far = node_plane(n, q->plane_offset[3 + k]);
         float on = q->slab_org_near[k].f[0], of = q->slab_org_far[k].f[0];
         float inv = q->slab_inv[k].f[0];
         for (int c = 0; c < BVH_WIDTH; c++) {
@@ -567,11 +616,19 @@ static inline unsigned node_test(const query *q, const bvh_node *n, float entry[
     unsigned mask = 0;
     for (int c = 0; c < BVH_WIDTH; c++) {
         mask |= (unsigned)(entry[c] <= tf[c]) << c;
-        if ((n->loose >> c) & 1u)
+        if ((loose >> c) & 1u)
             entry[c] = -INFINITY;
     }
     return mask;
 #endif
+}
+
+/* Asks for the first cache lines of what reference r (as in node_ref)
+ * points at: an inner node (its two lines) or a leaf (its first prims). */
+static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r)
+{
+    const char *at = r >= 0 ? (const char *)&q->nodes[r] : (const char *)&q->prims[~r];
+    PREFETCH(at);
 }
 
 /*
@@ -585,41 +642,33 @@ static inline unsigned node_test(const query *q, const bvh_node *n, float entry[
  * memory arrives. Stacked references are not yielded on (they were asked
  * for when pushed). The state lives in locals in between (registers).
  */
-static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield)
+static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_loose)
 {
-    const bvh_node *nodes = q->mesh->tree.nodes;
+    const bvh_node *nodes = q->nodes;
     int32_t ref = w->ref, count = w->count;
     int sp = w->sp;
     for (;;) {
         if (ref >= 0) {
             const bvh_node *n = &nodes[ref];
             float tn[BVH_WIDTH];
-            unsigned mask = node_test(q, n, tn);
+            unsigned mask = node_test(q, n, tn, may_loose);
             if (mask != 0) {
-                /* Ask for every hit child's first cache lines now: the
-                 * nearest is needed at once, the others when popped. (A
-                 * branch on the kind of child measured faster here than an
-                 * arithmetic select.) */
-                for (unsigned m = mask; m != 0; m &= m - 1) {
-                    int32_t r = n->child[lowest_bit[m]];
-                    const char *at = r >= 0 ? (const char *)&nodes[r]
-                                            : (const char *)&q->mesh->prims[~r];
-                    PREFETCH(at);
-                }
-                /* Most visits hit one or two children: those without a
-                 * sort; three or four by insertion. */
+                /* Every hit child's first cache lines are asked for as it
+                 * is met: the nearest is needed at once, the others when
+                 * popped. Most visits hit one or two children: those
+                 * without a sort; three or four by insertion. */
                 int first = lowest_bit[mask];
                 unsigned rest = mask & (mask - 1);
-                if (rest == 0) {
-                    ref = n->child[first];
-                    count = n->count[first];
-                } else {
-                    node_ref a = { n->child[first], n->count[first], tn[first] };
-                    int second = lowest_bit[rest];
-                    node_ref b = { n->child[second], n->count[second], tn[second] };
-                    rest &= rest - 1;
+                ref = n->child[first];
+                count = n->count[first];
+                prefetch_ref(q, ref);
+                if (rest != 0) {
+                    node_ref a = { ref, count, tn[first] };
                     node_ref near;
-                    if (rest == 0) {
+                    if ((rest & (rest - 1)) == 0) {
+                        int second = lowest_bit[rest];
+                        node_ref b = { n->child[second], n->count[second], tn[second] };
+                        prefetch_ref(q, b.ref);
                         int swap = b.entry < a.entry;
                         w->stack[sp++] = swap ? a : b;
                         near = swap ? b : a;
@@ -627,9 +676,10 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield)
                         node_ref next[BVH_WIDTH];
                         next[0] = a;
                         int k = 1;
-                        for (unsigned m = mask & (mask - 1); m != 0; m &= m - 1) {
+                        for (unsigned m = rest; m != 0; m &= m - 1) {
                             int c = lowest_bit[m];
                             node_ref r = { n->child[c], n->count[c], tn[c] };
+                            prefetch_ref(q, r.ref);
                             int j = k++;
                             for (; j > 0 && next[j - 1].entry > r.entry; j--)
                                 next[j] = next[j - 1];
@@ -666,11 +716,21 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield)
     }
 }
 
+/* 1 when some node of the mesh is loose (the root's flags are the OR of
+ * all): the traversal is compiled with and without the loose handling. */
+static int mesh_has_loose(const isect_mesh *m)
+{
+    return m->tree.nodes[0].loose != 0;
+}
+
 static void query_run(query *q, int mode)
 {
     walker w;
     walker_init(&w);
-    walk(q, &w, mode, 0);
+    if (mesh_has_loose(q->mesh))
+        walk(q, &w, mode, 0, 1);
+    else
+        walk(q, &w, mode, 0, 0);
 }
 
 int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
@@ -759,11 +819,11 @@ static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int6
     return 0;
 }
 
-int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
-                             const isect_ray *rays, int64_t n, const isect_params *prm,
-                             isect_hit *closest)
+/* The batch loop, compiled with and without the loose handling. */
+static ALWAYS_INLINE int64_t batch_run(const isect_shape *s, const isect_ray *rays, int64_t n,
+                                       const isect_params *prm, isect_hit *closest,
+                                       int may_loose)
 {
-    (void)f;
     int mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
     lane lanes[BATCH_LANES];
     int active[BATCH_LANES], live = 0;
@@ -774,7 +834,7 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     }
     while (live > 0) {
         for (int l = 0; l < BATCH_LANES; l++) {
-            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, mode, 1))
+            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, mode, 1, may_loose))
                 continue;
             isect_hit *out = &closest[lanes[l].index];
             int found = lanes[l].q.found;
@@ -788,6 +848,16 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
         }
     }
     return hit_count;
+}
+
+int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
+                             const isect_ray *rays, int64_t n, const isect_params *prm,
+                             isect_hit *closest)
+{
+    (void)f;
+    if (mesh_has_loose(s->mesh))
+        return batch_run(s, rays, n, prm, closest, 1);
+    return batch_run(s, rays, n, prm, closest, 0);
 }
 
 /* ------------------------------------------------------------ containment
