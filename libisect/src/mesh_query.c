@@ -510,7 +510,7 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 }
 
 /* A hint to start loading memory the traversal will soon read: two cache
- * lines, a whole node or a leaf's first prims. Traversal of a large mesh is
+ * lines (a whole node, or two lines of prims). Traversal of a large mesh is
  * bound by the latency of these loads; the hint overlaps them with other
  * work. GCC and clang only; elsewhere nothing. */
 #if defined(__GNUC__) || defined(__clang__)
@@ -623,12 +623,19 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
 #endif
 }
 
-/* Asks for the first cache lines of what reference r (as in node_ref)
- * points at: an inner node (its two lines) or a leaf (its first prims). */
-static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r)
+/* Asks for the memory reference r (as in node_ref, count its leaf size)
+ * points at: an inner node, or every prim of a leaf (a leaf's faces are
+ * all tested, so all of them are needed). */
+static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r, int32_t count)
 {
-    const char *at = r >= 0 ? (const char *)&q->nodes[r] : (const char *)&q->prims[~r];
-    PREFETCH(at);
+    if (r >= 0) {
+        const char *at = (const char *)&q->nodes[r];
+        PREFETCH(at);
+    } else {
+        const char *at = (const char *)&q->prims[~r], *end = (const char *)&q->prims[~r + count];
+        for (; at < end; at += 128)
+            PREFETCH(at);
+    }
 }
 
 /*
@@ -661,14 +668,14 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                 unsigned rest = mask & (mask - 1);
                 ref = n->child[first];
                 count = n->count[first];
-                prefetch_ref(q, ref);
+                prefetch_ref(q, ref, count);
                 if (rest != 0) {
                     node_ref a = { ref, count, tn[first] };
                     node_ref near;
                     if ((rest & (rest - 1)) == 0) {
                         int second = lowest_bit[rest];
                         node_ref b = { n->child[second], n->count[second], tn[second] };
-                        prefetch_ref(q, b.ref);
+                        prefetch_ref(q, b.ref, b.count);
                         int swap = b.entry < a.entry;
                         w->stack[sp++] = swap ? a : b;
                         near = swap ? b : a;
@@ -679,7 +686,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                         for (unsigned m = rest; m != 0; m &= m - 1) {
                             int c = lowest_bit[m];
                             node_ref r = { n->child[c], n->count[c], tn[c] };
-                            prefetch_ref(q, r.ref);
+                            prefetch_ref(q, r.ref, r.count);
                             int j = k++;
                             for (; j > 0 && next[j - 1].entry > r.entry; j--)
                                 next[j] = next[j - 1];
