@@ -128,6 +128,7 @@ bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
 	$(B)/bench/bench_batch
 	$(B)/bench/bench_mesh
 	.venv/bin/python bench/python_bench.py
+	.venv/bin/python bench/python_mesh_bench.py
 
 # ---------------------------------------------------------------- demo
 # The main job: renders every primitive through the Python API (batch calls,

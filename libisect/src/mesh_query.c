@@ -9,25 +9,49 @@
  * and never the answer: a query returns bit for bit what testing every
  * face in turn would (the tests check this against brute force).
  *
- * Why no hit is lost between boxes (numerics)
- * -------------------------------------------
- * Let D = max|o_k| + max|vertex coordinate| (infinity norm), u = 2^-53.
- * Every vertex-minus-origin difference is at most D. The exact test claims
- * a triangle when the frame origin lies in the triangle of its ROUNDED
- * projected vertices; each rounded projection is within 4uD of the exact
- * one, so the line passes within 4uD of the face, laterally. The reported
- * t is the mix of the vertices' sheared z by barycentric weights that are
- * nonnegative (the test clamps them to one sign), accurate to a few ulps
- * and normalised to sum 1, so org + t dir lies within about 27uD of a
- * point of the face in every coordinate once the slab test's own roundings
- * (subtraction 2uD, product and reciprocal 4uD as positions) are added.
- * The slab test therefore runs on boxes grown by pad = 64uD; the growth is
- * folded into two shifted copies of the origin (org_near, org_far), so it
- * costs nothing per box (the padding idea of Ize, "Robust BVH Ray
- * Traversal", JCGT 2013, made absolute instead of relative because the
- * errors here scale with D, not with t). A NaN from 0 * inf (a zero
- * direction component on a slab plane) loses every comparison, so that
- * slab simply does not constrain the interval — conservative.
+ * Why no hit is lost between boxes: the node test (numerics)
+ * ----------------------------------------------------------
+ * Let D = (max|o_k| + max|vertex coordinate|)(1 + 4u), u = 2^-53, f =
+ * 2^-24 (float). Every vertex-minus-origin difference is at most D. The
+ * exact test claims a triangle when the frame origin lies in the triangle
+ * of its ROUNDED projected vertices (each within 4uD of the exact one), and
+ * reports t as a mix of the vertices' sheared z by nonnegative weights
+ * summing to 1 within a few ulps: org + t dir lies within a few tens of uD
+ * (far below 2^-40 D) of a point of the face, hence of its box; the float
+ * boxes are rounded outward and contain their faces exactly. Such a hit
+ * has |t| max|dir| <= |t dir| <= D (1 + 2^-40).
+ *
+ * The test runs in float on four children at once, in scaled time tau =
+ * t 2^(ev - ed), where 2^ed <= D < 2^(ed+1) and 2^ev <= max|dir| <
+ * 2^(ev+1) (both exponents in a range that keeps every quantity normal;
+ * outside it every child passes). Every hit then has |tau| < 2, so tmin
+ * and the current limit are clamped to [-4, 4] and rounded down and up
+ * (slab_time_down/up) without losing one.
+ *
+ * Per steep axis (|dir_k| >= 2^-20 max|dir|) a plane b of a box gives
+ * tau = fl(fl(b - on_k) inv_k), on_k = fl(o_k + pad) for the near plane
+ * (o_k - pad for the far one, the sign by dir_k: the box grown by pad =
+ * 2^-20 D), inv_k = fl(fl(1 / dir_k) 2^(ev - ed)). The numerator errs by
+ * at most f D (on_k) + 2f D (the subtraction, |b - on_k| <= 2D), the
+ * product by 2f relative (inv_k and the product), i.e. 4f D as a position
+ * on the axis: 7f D < pad in all. So the computed entry is no later, and
+ * the exit no earlier, than those of the box grown by pad - 7f D = 9f D,
+ * which holds every hit of its faces. (The padding idea of Ize, "Robust
+ * BVH Ray Traversal", JCGT 2013, made absolute because the errors here
+ * scale with D, not with t; folded into the two shifted origins, so it
+ * costs nothing per box.)
+ *
+ * A flat axis (|dir_k| < 2^-20 max|dir|) takes inv_k = +-inf: the slab
+ * then passes every tau or none, by the side of the shifted origin, with
+ * pad 2^-18 D; a hit moves along the axis by |t dir_k| < 2^-20 D (1 +
+ * 2^-40) from o_k, well inside that pad. A NaN from 0 * inf (the shifted
+ * origin exactly on a plane) is the first operand of max and min, which
+ * return the second: that slab does not constrain the interval.
+ *
+ * A child passes when max(tmin, entries) <= min(limit, exits): every
+ * child holding a hit that matters passes, and a stacked child is dropped
+ * only when its entry lies beyond the limit, i.e. beyond every hit that
+ * could still replace the closest one.
  *
  * Polygon faces take t from their plane, t = n.(c - o) / n.d, which for a
  * grazing ray may land far outside the face's box; subtrees holding a
