@@ -312,6 +312,59 @@ static int64_t check_against_brute(const fx_mesh *m, int rays, uint64_t seed)
     return seen;
 }
 
+/* Rays nearly parallel to coordinate planes: one or two direction
+ * components zero, subnormal or small relative to the others (below and
+ * just above the 2^-20 under which the node test treats an axis as flat:
+ * its slab then passes all or nothing by the side of the padded origin).
+ * Each ray passes through a vertex at t = 1, its origin moved along the
+ * flat axis by the ray's own drift, so the origin lies just outside the
+ * boxes whose extreme that vertex is: a pad too small to cover the drift
+ * loses their hits. The mesh must give brute force's hits bit for bit. */
+static int64_t check_flat_rays(const fx_mesh *m, int rays, uint64_t seed)
+{
+    enum { CAP = 256 };
+    static isect_hit want[CAP], got[CAP];
+    static const double relative[6] = { 0.0, 1e-7, 0x1p-21, 0x1.ep-21, 0x1.2p-20, 0x1p-1070 };
+    isect_mesh *mesh = fx_build(m);
+    isect_shape s = mesh_shape(mesh, NULL);
+    lcg g = { seed };
+    int64_t seen = 0;
+    int bad = 0;
+    for (int i = 0; i < rays; i++) {
+        uint32_t flags;
+        isect_ray r = random_ray(m, &g, 0, &flags);
+        int64_t v = (int64_t)((lcg_uniform(&g) + 1.0) * 0.5 * (double)m->nv);
+        const double *target = m->v + 3 * v;
+        int k = i % 3, both = (i / 3) % 2;
+        double f = relative[(i / 6) % 6] * (lcg_uniform(&g) < 0.0 ? -1.0 : 1.0);
+        for (int a = 0; a < 3; a++)
+            r.dir[a] = target[a] - r.org[a];
+        double scale = fabs(r.dir[(k + 1) % 3]) + fabs(r.dir[(k + 2) % 3]);
+        r.dir[k] = f * scale;
+        if (both)
+            r.dir[(k + 2) % 3] = f * scale;
+        if (r.dir[0] == 0.0 && r.dir[1] == 0.0 && r.dir[2] == 0.0)
+            r.dir[(k + 1) % 3] = 1.0;
+        for (int a = 0; a < 3; a++)
+            r.org[a] = target[a] - r.dir[a];
+        r.tmin = 0.0;
+        r.tmax = INFINITY;
+        isect_opts o = ISECT_OPTS_INIT;
+        o.flags = flags;
+        int n_want = brute_hits(m, &r, flags, want, CAP);
+        int n_got = isect_intersect(&s, &r, &o, got, CAP);
+        seen += n_want;
+        isect_hit closest;
+        int64_t hit = isect_intersect_batch(&s, &r, 1, &o, &closest);
+        if (n_got != n_want || !hits_equal(want, got, n_want) || hit != (n_want > 0)
+            || (n_want > 0 && !hits_equal(&closest, want, 1)))
+            bad++;
+    }
+    CHECK_EQ_INT(bad, 0);
+    isect_mesh_destroy(mesh);
+    return seen;
+}
+
 static void test_queries(void)
 {
     const double origin[3] = { 0.0, 0.0, 0.0 }, off_center[3] = { 0.3, -0.2, 0.1 };
@@ -355,8 +408,12 @@ static void test_queries(void)
         for (int64_t v = 0; v < 3 * m.nv; v++)
             m.v[v] = m.v[v] * scales[i] + shifts[i];
         CHECK(check_against_brute(&m, 1000, 8 + (uint64_t)i) > 300);
+        CHECK(check_flat_rays(&m, 600, 20 + (uint64_t)i) > 100);
         fx_free(&m);
     }
+    m = fx_genus2(0);
+    CHECK(check_flat_rays(&m, 3000, 30) > 500);
+    fx_free(&m);
 }
 
 /* Rays through the vertices and edges of a cube of quads, on its faces'
