@@ -835,11 +835,13 @@ static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int6
         int status = ray_check(r);
         if (status == ISECT_OK)
             status = shape_object_ray(s, r, &l->object, &r);
-        /* mesh_hit_first's early miss. */
-        if (status == ISECT_OK && !(r->tmin <= r->tmax))
-            status = 0;
         if (status != ISECT_OK) {
             batch_record(&closest[i], status);
+            continue;
+        }
+        /* mesh_hit_first's early miss: found 0. */
+        if (!(r->tmin <= r->tmax)) {
+            batch_record(&closest[i], 0);
             continue;
         }
         query_init(&l->q, s->mesh, r, prm);
