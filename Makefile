@@ -125,6 +125,7 @@ $(B)/bench/bench_mesh: bench/bench_mesh.c tests/c/mesh_fixtures.h $(STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include -Itests/c $< -o $@ $(STLIB) -lembree3 -lm
 bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
+	mkdir -p bench/results
 	$(B)/bench/bench_batch
 	$(B)/bench/bench_mesh
 	.venv/bin/python bench/python_bench.py
