@@ -286,7 +286,6 @@ static int mesh_build(isect_mesh *m)
             const int32_t *corner = m->idx + mesh_face_start(m, f);
             p->face = f;
             p->nverts = mesh_face_size(m, f);
-            memset(p->n, 0, sizeof p->n);
             if (p->nverts == 3) {
                 for (int c = 0; c < 3; c++)
                     memcpy(p->v + 3 * c, mesh_vertex(m, corner[c]), 3 * sizeof(double));
@@ -297,6 +296,7 @@ static int mesh_build(isect_mesh *m)
             } else {
                 memcpy(p->v, it.plane[item], 6 * sizeof(double));
                 memset(p->v + 6, 0, 3 * sizeof(double));
+                memset(p->n, 0, sizeof p->n);
             }
         }
     }

@@ -499,7 +499,7 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
     if (!q->frame_ready)
         query_leaf_init(q);
     for (int32_t i = 0; i < count; i++) {
-        const mesh_prim *p = &m->prims[first + i];
+        const mesh_prim *p = &q->prims[first + i];
         isect_hit h;
         int hit;
         if (p->nverts == 3) {
@@ -543,8 +543,9 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 #define PREFETCH(p) ((void)(p))
 #endif
 
-/* walk is written once and compiled twice, for the scalar queries and
- * for the batch (its yield argument a constant in each). */
+/* walk is written once and compiled four times: for the scalar queries
+ * and for the batch (its yield argument), each with and without the loose
+ * handling (may_loose), the two a constant in each copy. */
 #if defined(__GNUC__) || defined(__clang__)
 #define ALWAYS_INLINE inline __attribute__((always_inline))
 #else
@@ -684,9 +685,8 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
             float tn[BVH_WIDTH];
             unsigned mask = node_test(q, n, tn, may_loose);
             if (mask != 0) {
-                /* Every hit child's first cache lines are asked for as it
-                 * is met: the nearest is needed at once, the others when
-                 * popped. Most visits hit one or two children: those
+                /* Every hit child's memory is asked for as it is met: the
+                 * nearest is needed at once, the others when popped. Most visits hit one or two children: those
                  * without a sort; three or four by insertion. */
                 int first = lowest_bit[mask];
                 unsigned rest = mask & (mask - 1);
@@ -823,9 +823,9 @@ typedef struct lane {
     int64_t   index;
 } lane;
 
-/* Starts the next ray that needs a traversal (writing the records of the
- * ones that do not; *hit_count is unchanged by them: they are misses or
- * invalid); 0 when there is none left. */
+/* Starts the next ray that needs a traversal, writing the records of the
+ * ones that do not (misses or invalid: none counts as a hit); 0 when there
+ * is none left. */
 static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int64_t n,
                       int64_t *next, const isect_params *prm, isect_hit *closest)
 {

@@ -211,13 +211,23 @@ static int triangle_side(const ray_frame *f, const double a[3], const double b[3
     return s;
 }
 
-/* The rest of the test once the sides agree (s) and the plane is known. */
-static int triangle_hit_rest(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
-                             const double a[3], const double b[3], const double c[3],
-                             const double pa[3], const double pb[3], const double pc[3],
-                             const double det[3], int s, const double normal[3], int nonzero,
-                             isect_hit *out)
+/* The test: the sides (triangle_side), then the plane, passed in (normal
+ * and nonzero as triangle_plane gives them) or, with normal NULL, computed
+ * here, only for the few faces whose sides agree. */
+static int triangle_hit(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
+                        const double a[3], const double b[3], const double c[3],
+                        const double *normal, int nonzero, isect_hit *out)
 {
+    double pa[3], pb[3], pc[3], det[3];
+    int s = triangle_side(f, a, b, c, pa, pb, pc, det);
+    if (s == 0)
+        return 0;
+    double own_normal[3];
+    if (normal == NULL) {
+        if (!triangle_normal(a, b, c, own_normal, &nonzero))
+            return 0;
+        normal = own_normal;
+    }
     /* Epsilon policy: parallel when |n.d| <= eps |n| |d| (n is unit here). */
     if (!not_parallel(f, ray->dir, fabs(v3_dot(normal, ray->dir)), prm->eps))
         return 0;
@@ -243,15 +253,7 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
                         const double a[3], const double b[3], const double c[3],
                         isect_hit *out)
 {
-    double pa[3], pb[3], pc[3], det[3];
-    int s = triangle_side(f, a, b, c, pa, pb, pc, det);
-    if (s == 0)
-        return 0;
-    double normal[3];
-    int nonzero;
-    if (!triangle_normal(a, b, c, normal, &nonzero))
-        return 0;
-    return triangle_hit_rest(f, ray, prm, a, b, c, pa, pb, pc, det, s, normal, nonzero, out);
+    return triangle_hit(f, ray, prm, a, b, c, NULL, 0, out);
 }
 
 int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
@@ -265,11 +267,7 @@ int triangle_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
                               const double c[3], const double normal[3], int nonzero,
                               isect_hit *out)
 {
-    double pa[3], pb[3], pc[3], det[3];
-    int s = triangle_side(f, a, b, c, pa, pb, pc, det);
-    if (s == 0)
-        return 0;
-    return triangle_hit_rest(f, ray, prm, a, b, c, pa, pb, pc, det, s, normal, nonzero, out);
+    return triangle_hit(f, ray, prm, a, b, c, normal, nonzero, out);
 }
 
 int triangle_check(const isect_shape *s)
