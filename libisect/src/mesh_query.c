@@ -806,15 +806,30 @@ int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray 
  * any) hits of many rays, BATCH_LANES traversals in flight at once, taking
  * one step each in turn. A large mesh's traversal waits on one cache miss
  * per node; the prefetch a step issues for its next node completes while
- * the other lanes step, so the misses of several rays overlap. Each lane
- * runs exactly the steps mesh_hit_first runs (query_init, the tmin > tmax
- * miss, query_run's steps one at a time; no state is shared between
- * lanes), and each ray passes ray_check, shape_object_ray, batch_record and
- * shape_hits_to_world as batch.c's per-ray loop over shape_ray_first does,
- * so every record and the returned count are bit for bit that loop's. Rays
- * finish out of order; each writes only its own record.
+ * the other lanes step, so the misses of several rays overlap.
+ *
+ * A ray that follows its predecessor closely (ray_follows: coherent rays,
+ * such as a camera's neighbouring pixels) is instead traced at once, start
+ * to end: it visits nearly the nodes and faces the predecessor has just
+ * brought into cache, so there are no misses to overlap, and interleaving
+ * it with other traversals would only cost the stepping and the branch
+ * predictor's memory of the path (measured: the camera rays of
+ * bench_mesh on 82k triangles take 20 % longer in lanes than traced at
+ * once, random rays 30-50 % longer traced at once).
+ *
+ * Either way each ray runs exactly the steps mesh_hit_first runs
+ * (query_init, the tmin > tmax miss, query_run's steps, at once or one at a
+ * time; no state is shared between rays), and each ray passes ray_check,
+ * shape_object_ray, batch_record and shape_hits_to_world as batch.c's
+ * per-ray loop over shape_ray_first does, so every record and the returned
+ * count are bit for bit that loop's. Rays finish out of order; each writes
+ * only its own record.
  */
 #define BATCH_LANES 8
+
+/* Rays count as close when they stay within 2^-7 of the mesh box's largest
+ * side of each other across the box (see ray_follows). */
+#define FOLLOW_REACH 0x1p-7
 
 typedef struct lane {
     query     q;
@@ -823,64 +838,143 @@ typedef struct lane {
     int64_t   index;
 } lane;
 
-/* Starts the next ray that needs a traversal, writing the records of the
- * ones that do not (misses or invalid: none counts as a hit); 0 when there
- * is none left. */
-static int lane_start(lane *l, const isect_shape *s, const isect_ray *rays, int64_t n,
-                      int64_t *next, const isect_params *prm, isect_hit *closest)
+/* What the batch's rays share: the input, the output, and what ray_follows
+ * needs (the mesh box, the previous ray started). */
+typedef struct batch {
+    const isect_shape  *s;
+    const isect_ray    *rays;
+    int64_t             n, next, hit_count;
+    const isect_params *prm;
+    isect_hit          *closest;
+    int                 mode;
+    double              center[3], extent; /* the mesh box (extent: largest side) */
+    double              prev_org[3], prev_dir[3]; /* the last ray started (object
+                                                     space); NaN before the first */
+} batch;
+
+/* The mesh box from the root's children (empty children have lo > hi).
+ * Out-of-range coordinates give an infinite or NaN extent: ray_follows
+ * then says no, and every ray runs in a lane, as before. */
+static void batch_mesh_box(batch *b, const isect_mesh *m)
 {
-    while (*next < n) {
-        int64_t i = (*next)++;
-        const isect_ray *r = &rays[i];
+    const bvh_node *root = &m->tree.nodes[0];
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (int c = 0; c < BVH_WIDTH; c++)
+        for (int k = 0; k < 3; k++) {
+            double l = root->bounds[k][c], h = root->bounds[3 + k][c];
+            if (l <= h) {
+                lo[k] = l < lo[k] ? l : lo[k];
+                hi[k] = h > hi[k] ? h : hi[k];
+            }
+        }
+    b->extent = 0.0;
+    for (int k = 0; k < 3; k++) {
+        b->center[k] = 0.5 * lo[k] + 0.5 * hi[k];
+        b->extent = hi[k] - lo[k] > b->extent ? hi[k] - lo[k] : b->extent;
+    }
+    if (!(b->extent < INFINITY))
+        b->extent = NAN;
+}
+
+/* 1 when ray r stays close to the previous ray across the mesh box: with
+ * origins dO apart (max norm) and directions at angle a, the rays are at
+ * most dO + sin(a) L apart within the box, L = max|o - center| + extent
+ * bounding the distance from o to any point of it; sin(a) = |d x p| /
+ * (|d| |p|) <= sqrt(3) |d x p|_max / (max|d| max|p|). Same heading only
+ * (d . p > 0). Written without a division; a NaN or overflow says no. Only
+ * the speed depends on it. */
+static int ray_follows(const batch *b, const isect_ray *r)
+{
+    const double *o = r->org, *d = r->dir, *po = b->prev_org, *pd = b->prev_dir;
+    double reach = FOLLOW_REACH * b->extent;
+    /* Origins apart by more than the reach: no (most incoherent rays). */
+    double gap = fabs(o[0] - po[0]);
+    gap = fabs(o[1] - po[1]) > gap ? fabs(o[1] - po[1]) : gap;
+    gap = fabs(o[2] - po[2]) > gap ? fabs(o[2] - po[2]) : gap;
+    if (!(gap <= reach))
+        return 0;
+    double cross = 0.0, span = 0.0, dmax = 0.0, pmax = 0.0, dot = 0.0;
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        double c = fabs(d[i] * pd[j] - d[j] * pd[i]), e = fabs(o[k] - b->center[k]);
+        cross = c > cross ? c : cross;
+        span = e > span ? e : span;
+        dmax = fabs(d[k]) > dmax ? fabs(d[k]) : dmax;
+        pmax = fabs(pd[k]) > pmax ? fabs(pd[k]) : pmax;
+        dot += d[k] * pd[k];
+    }
+    double norms = dmax * pmax;
+    return dot > 0.0
+        && gap * norms + 1.7320508075688773 * cross * (span + b->extent) <= reach * norms;
+}
+
+/* The record of lane l's finished traversal; its hit count (0 or 1). */
+static int64_t lane_finish(const lane *l, const batch *b)
+{
+    isect_hit *out = &b->closest[l->index];
+    int found = l->q.found;
+    if (found) {
+        *out = l->q.best;
+        shape_hits_to_world(b->s, out, 1);
+    }
+    return batch_record(out, found);
+}
+
+/* Starts the next ray that needs a traversal in lane l, writing the
+ * records of the ones that do not (misses or invalid: none counts as a
+ * hit) and tracing those that follow their predecessor at once; 0 when
+ * there is none left. */
+static int lane_start(lane *l, batch *b)
+{
+    while (b->next < b->n) {
+        int64_t i = b->next++;
+        const isect_ray *r = &b->rays[i];
         int status = ray_check(r);
         if (status == ISECT_OK)
-            status = shape_object_ray(s, r, &l->object, &r);
+            status = shape_object_ray(b->s, r, &l->object, &r);
         if (status != ISECT_OK) {
-            batch_record(&closest[i], status);
+            batch_record(&b->closest[i], status);
             continue;
         }
         /* mesh_hit_first's early miss: found 0. */
         if (!(r->tmin <= r->tmax)) {
-            batch_record(&closest[i], 0);
+            batch_record(&b->closest[i], 0);
             continue;
         }
-        query_init(&l->q, s->mesh, r, prm);
-        walker_init(&l->w);
+        query_init(&l->q, b->s->mesh, r, b->prm);
         l->index = i;
-        return 1;
+        int follows = ray_follows(b, r);
+        memcpy(b->prev_org, r->org, sizeof b->prev_org);
+        memcpy(b->prev_dir, r->dir, sizeof b->prev_dir);
+        if (!follows) {
+            walker_init(&l->w);
+            return 1;
+        }
+        query_run(&l->q, b->mode); /* as mesh_hit_first */
+        b->hit_count += lane_finish(l, b);
     }
     return 0;
 }
 
 /* The batch loop, compiled with and without the loose handling. */
-static ALWAYS_INLINE int64_t batch_run(const isect_shape *s, const isect_ray *rays, int64_t n,
-                                       const isect_params *prm, isect_hit *closest,
-                                       int may_loose)
+static ALWAYS_INLINE int64_t batch_run(batch *b, int may_loose)
 {
-    int mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
     lane lanes[BATCH_LANES];
     int active[BATCH_LANES], live = 0;
-    int64_t next = 0, hit_count = 0;
     for (int l = 0; l < BATCH_LANES; l++) {
-        active[l] = lane_start(&lanes[l], s, rays, n, &next, prm, closest);
+        active[l] = lane_start(&lanes[l], b);
         live += active[l];
     }
     while (live > 0) {
         for (int l = 0; l < BATCH_LANES; l++) {
-            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, mode, 1, may_loose))
+            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, b->mode, 1, may_loose))
                 continue;
-            isect_hit *out = &closest[lanes[l].index];
-            int found = lanes[l].q.found;
-            if (found) {
-                *out = lanes[l].q.best;
-                shape_hits_to_world(s, out, 1);
-            }
-            hit_count += batch_record(out, found);
-            active[l] = lane_start(&lanes[l], s, rays, n, &next, prm, closest);
+            b->hit_count += lane_finish(&lanes[l], b);
+            active[l] = lane_start(&lanes[l], b);
             live -= !active[l];
         }
     }
-    return hit_count;
+    return b->hit_count;
 }
 
 int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
@@ -888,9 +982,21 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
                              isect_hit *closest)
 {
     (void)f;
+    batch b;
+    b.s = s;
+    b.rays = rays;
+    b.n = n;
+    b.next = 0;
+    b.hit_count = 0;
+    b.prm = prm;
+    b.closest = closest;
+    b.mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
+    for (int k = 0; k < 3; k++)
+        b.prev_org[k] = b.prev_dir[k] = NAN;
+    batch_mesh_box(&b, s->mesh);
     if (mesh_has_loose(s->mesh))
-        return batch_run(s, rays, n, prm, closest, 1);
-    return batch_run(s, rays, n, prm, closest, 0);
+        return batch_run(&b, 1);
+    return batch_run(&b, 0);
 }
 
 /* ------------------------------------------------------------ containment

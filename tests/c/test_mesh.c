@@ -594,9 +594,23 @@ static void test_batch_lanes(void)
             lcg g = { 1000u + 10u * (uint64_t)transformed + (uint64_t)fs };
             isect_opts o = ISECT_OPTS_INIT;
             o.flags = flag_sets[fs];
+            isect_ray obj_prev;
             for (int i = 0; i < N; i++) {
                 uint32_t ignored;
                 rays[i] = random_ray(&m, &g, 1, &ignored);
+                /* Runs of coherent rays (the batch traces a ray that closely
+                 * follows the one before at once, the others in lanes):
+                 * every other run of 300 turns the previous object-space
+                 * ray by about 1e-4, keeping this ray's range. */
+                if ((i / 300) % 2 == 1 && i % 300 != 0) {
+                    isect_ray turned = obj_prev;
+                    for (int k = 0; k < 3; k++)
+                        turned.dir[k] += 1e-4 * lcg_uniform(&g);
+                    turned.tmin = rays[i].tmin;
+                    turned.tmax = rays[i].tmax;
+                    rays[i] = turned;
+                }
+                obj_prev = rays[i];
                 if (transformed) { /* the object-space ray taken to world space */
                     isect_ray obj = rays[i];
                     for (int k = 0; k < 3; k++) {
