@@ -35,6 +35,15 @@
 
 #include <math.h>
 
+/* For code written once and compiled into several specialised copies (a
+ * constant argument, or a caller built for another instruction set, as
+ * mesh_query.c's FMA leaf loop): inlined where GCC and clang can be told. */
+#if defined(__GNUC__) || defined(__clang__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* The most hits an analytic primitive can have along one line. */
 #define ISECT_MAX_HITS 4
 

@@ -90,6 +90,7 @@
 #include "planar.h"
 #include "predicates.h"
 #include "ray_frame.h"
+#include "triangle_test.h"
 #include "vec3.h"
 
 #include <float.h>
@@ -103,6 +104,13 @@
 #include <emmintrin.h>
 #else
 #define MESH_SSE 0
+#endif
+
+/* The leaf loop's FMA copy (see query_leaf): x86-64 with GCC or clang. */
+#if MESH_SSE && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define MESH_FMA 1
+#else
+#define MESH_FMA 0
 #endif
 
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2.0)
@@ -145,6 +153,8 @@ typedef struct node_ref {
 } node_ref;
 
 typedef struct query {
+    /* The leaf loop (query_leaf or its FMA copy). */
+    int (*leaf)(struct query *q, int mode, int32_t first, int32_t count);
     const isect_mesh   *mesh;
     const bvh_node     *nodes;  /* the mesh's, for the traversal */
     const mesh_prim    *prims;
@@ -346,9 +356,19 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
     memcpy(q->plane_offset, plane_offsets[negative], sizeof q->plane_offset);
 }
 
+static int query_leaf(query *q, int mode, int32_t first, int32_t count);
+#if MESH_FMA
+static int query_leaf_fma(query *q, int mode, int32_t first, int32_t count);
+#endif
+
 static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
                        const isect_params *prm)
 {
+    q->leaf = query_leaf;
+#if MESH_FMA
+    if (__builtin_cpu_supports("fma"))
+        q->leaf = query_leaf_fma;
+#endif
     q->mesh = m;
     q->nodes = m->tree.nodes;
     q->prims = m->prims;
@@ -492,7 +512,7 @@ static int query_take(query *q, int mode, const isect_hit *h)
 }
 
 /* The faces of one leaf; 1 when the traversal can stop. */
-static int query_leaf(query *q, int mode, int32_t first, int32_t count)
+static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int32_t count)
 {
     const isect_mesh *m = q->mesh;
     const isect_ray *ray = q->ray;
@@ -507,11 +527,11 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
                 continue;
             /* The plane precomputed (zero: triangle_hit_framed never hits
              * this face); the face is not collinear (degenerate faces are
-             * not in the BVH), so the exact collinearity test is skipped. */
+             * not in the BVH), so the exact collinearity test is skipped:
+             * triangle_hit_plane_framed's test, inline. */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
-            hit = triangle_hit_plane_framed(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6,
-                                            p->n, 1, &h);
+            hit = triangle_hit(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, p->n, 1, &h);
         } else {
             /* polygon_hit_plane_framed takes |dir| from the frame: computed
              * once, bit for bit as ray_frame_shear would. */
@@ -533,6 +553,27 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
     return 0;
 }
 
+/* The leaf loop, compiled twice: for any x86-64 (libm's fma) and, where
+ * GCC or clang target x86-64, for CPUs with FMA (one instruction per fma:
+ * the exact triangle test has nine, the pre-filter none). fma rounds
+ * correctly either way, and the library builds with -ffp-contract=off so
+ * no other operation is fused: both copies give the same bits (the mesh
+ * tests compare this loop, which runs the FMA copy on such a CPU, with the
+ * triangle test built for any x86-64; the no-SIMD build runs the other).
+ * query_init picks one per query (q->leaf). */
+static int query_leaf(query *q, int mode, int32_t first, int32_t count)
+{
+    return query_leaf_body(q, mode, first, count);
+}
+
+#if MESH_FMA
+__attribute__((target("fma"))) static int query_leaf_fma(query *q, int mode, int32_t first,
+                                                         int32_t count)
+{
+    return query_leaf_body(q, mode, first, count);
+}
+#endif
+
 /* A hint to start loading memory the traversal will soon read: two cache
  * lines (a whole node, or two lines of prims). Traversal of a large mesh is
  * bound by the latency of these loads; the hint overlaps them with other
@@ -546,11 +587,6 @@ static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 /* walk is written once and compiled four times: for the scalar queries
  * and for the batch (its yield argument), each with and without the loose
  * handling (may_loose), the two a constant in each copy. */
-#if defined(__GNUC__) || defined(__clang__)
-#define ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define ALWAYS_INLINE inline
-#endif
 
 /* The index of the lowest set bit of a 4-bit mask (C99 has no ctz). */
 static const int8_t lowest_bit[16] = { 0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0 };
@@ -731,7 +767,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                 }
                 continue;
             }
-        } else if (count > 0 && query_leaf(q, mode, ~ref, count)) {
+        } else if (count > 0 && q->leaf(q, mode, ~ref, count)) {
             return 0;
         }
         for (;;) {
