@@ -400,8 +400,8 @@ static void query_leaf_init(query *q)
 
 /* 0 when the exact triangle test certainly rejects the triangle or its
  * hit lies certainly outside [t_lo, t_hi]; 1 when it must be run. */
-static inline int triangle_candidate(const query *q, const double *v, double t_lo,
-                                     double t_hi)
+static ALWAYS_INLINE int triangle_candidate(const query *q, const double *v, double t_lo,
+                                            double t_hi)
 {
     const ray_frame *f = &q->frame;
     const int kx = f->kx, ky = f->ky, kz = f->kz;
