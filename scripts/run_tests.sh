@@ -45,6 +45,12 @@ step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
 done
+# The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
+step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
+    OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once
+for t in test_mesh test_mesh_exactly_once; do
+    [ -x $B/noavx2/tests/$t ] && step "$t [SSE2 only]" $B/noavx2/tests/$t
+done
 if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json

@@ -1,6 +1,6 @@
 /*
  * bvh.c — binned SAH construction of the binary tree and its collapse to
- * the 4-wide nodes of bvh.h.
+ * the 8-wide nodes of bvh.h.
  *
  * Top-down: each range of item references is binned by centroid along the
  * axis of its centroids' largest extent, the split plane between bins with
@@ -34,11 +34,11 @@
 #define BINS_SMALL 16
 #define BINS_SMALL_BELOW 4096
 
-/* SAH costs in units of one item test. A binary node becomes half a level
- * of a 4-wide node, whose four boxes are tested at once (SIMD): measured
- * on the icosphere benchmark, 1.5 gives the fastest traversal (3 did with
- * the earlier one-box-at-a-time node test; 1 is as fast at 82k triangles
- * and slower at 1.3M). */
+/* SAH costs in units of one item test. A binary node becomes a third of a
+ * level of an 8-wide node, whose eight boxes are tested at once (SIMD):
+ * measured on the icosphere benchmark, 1.5 gives the fastest traversal (1
+ * and 2.5 are 2-5 % slower at 82k triangles; 3 was best with the earliest,
+ * one-box-at-a-time node test). */
 #define COST_TRAVERSE 1.5
 
 /* One item during the build: its box and where it came from. 32 bytes;
@@ -469,7 +469,7 @@ static uint8_t build_range(builder *b, int64_t begin, int64_t end, const aabbf *
 
 /* ------------------------------------------------------------ collapse */
 
-/* One child slot while a 4-wide node is assembled. */
+/* One child slot while an 8-wide node is assembled. */
 typedef struct slot {
     float   box[6];
     int32_t ref;
@@ -498,9 +498,9 @@ static void slot_from_bin(slot *s, const bin_node *n, int c)
     s->flags = n->flags[c];
 }
 
-/* The 4-wide node standing for binary inner node b; returns its index.
+/* The 8-wide node standing for binary inner node b; returns its index.
  * Its children are b's children, with the inner child of largest area
- * replaced by its own two children while fewer than four. */
+ * replaced by its own two children while fewer than eight. */
 static int32_t collapse(collapser *c, int32_t b)
 {
     slot slots[BVH_WIDTH];
@@ -595,21 +595,21 @@ int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t 
         order[i] = b.refs[i].item;
     free(b.refs);
 
-    /* The 4-wide nodes: counted by a first pass, then written into one
-     * block aligned to 128 bytes (C99 has no aligned allocation:
+    /* The 8-wide nodes: counted by a first pass, then written into one
+     * block aligned to 256 bytes (C99 has no aligned allocation:
      * over-allocate and round the address up). */
     collapser c;
     c.bin = b.nodes;
     c.nodes = NULL;
     c.node_count = 0;
     collapse(&c, 0);
-    unsigned char *storage = malloc((size_t)c.node_count * sizeof(bvh_node) + 127);
+    unsigned char *storage = malloc((size_t)c.node_count * sizeof(bvh_node) + 255);
     if (storage == NULL) {
         free(b.nodes);
         return ISECT_E_NOMEM;
     }
-    size_t misalign = (size_t)((uintptr_t)storage & 127u);
-    c.nodes = (bvh_node *)(void *)(storage + (misalign != 0 ? 128 - misalign : 0));
+    size_t misalign = (size_t)((uintptr_t)storage & 255u);
+    c.nodes = (bvh_node *)(void *)(storage + (misalign != 0 ? 256 - misalign : 0));
     c.node_count = 0;
     collapse(&c, 0);
     free(b.nodes);
@@ -627,5 +627,5 @@ void bvh_free(bvh *b)
     b->node_count = 0;
 }
 
-/* The node layout the traversal relies on: 128 bytes, two cache lines. */
-typedef char bvh_node_is_128_bytes[sizeof(bvh_node) == 128 ? 1 : -1];
+/* The node layout the traversal relies on: 256 bytes, four cache lines. */
+typedef char bvh_node_is_256_bytes[sizeof(bvh_node) == 256 ? 1 : -1];

@@ -21,7 +21,7 @@
  * boxes are rounded outward and contain their faces exactly. Such a hit
  * has |t| max|dir| <= |t dir| <= D (1 + 2^-40).
  *
- * The test runs in float on four children at once, in scaled time tau =
+ * The test runs in float on eight children at once, in scaled time tau =
  * t 2^(ev - ed), where 2^ed <= D < 2^(ed+1) and 2^ev <= max|dir| <
  * 2^(ev+1) (both exponents in a range that keeps every quantity normal;
  * outside it every child passes). Every hit then has |tau| < 2, so tmin
@@ -94,11 +94,12 @@
 #include "vec3.h"
 
 #include <float.h>
+#include <stdlib.h>
 #include <string.h>
 
-/* The node test runs on four children at once with SSE (every x86-64 has
- * it); elsewhere, or with ISECT_NO_SIMD defined, the same float operations
- * one child at a time. */
+/* The node test runs on eight children at once, as two halves of four
+ * with SSE (every x86-64 has it); elsewhere, or with ISECT_NO_SIMD defined,
+ * the same float operations one child at a time. */
 #if defined(__SSE2__) && !defined(ISECT_NO_SIMD)
 #define MESH_SSE 1
 #include <emmintrin.h>
@@ -106,11 +107,32 @@
 #define MESH_SSE 0
 #endif
 
-/* The leaf loop's FMA copy (see query_leaf): x86-64 with GCC or clang. */
-#if MESH_SSE && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define MESH_FMA 1
+/* On x86-64 with GCC or clang the traversal is compiled a second time for
+ * CPUs with AVX2 and FMA (checked at run time, cpu_has_avx2_fma): the node
+ * test on all eight children in one AVX register, and the exact face
+ * tests' fma as instructions instead of libm calls. Both copies make the
+ * same float and double operations in the same order (fma rounds correctly
+ * either way; the library builds with -ffp-contract=off, so nothing else is
+ * fused), so they give the same bits: the mesh tests compare this
+ * traversal, which runs the AVX2 copy on such a CPU, with the lone triangle
+ * and polygon tests, built for any x86-64; the test script also builds the
+ * library with ISECT_NO_AVX2 (SSE2 only) and ISECT_NO_SIMD (portable) and
+ * runs the mesh tests on each. */
+#if MESH_SSE && !defined(ISECT_NO_AVX2) && defined(__x86_64__) \
+    && (defined(__GNUC__) || defined(__clang__))
+#define MESH_AVX2 1
+#include <immintrin.h>
+#define MESH_TARGET_AVX2 __attribute__((target("avx2,fma")))
+static int cpu_has_avx2_fma(void)
+{
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
 #else
-#define MESH_FMA 0
+#define MESH_AVX2 0
+static int cpu_has_avx2_fma(void)
+{
+    return 0;
+}
 #endif
 
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2.0)
@@ -136,13 +158,14 @@
 
 enum query_mode { QUERY_CLOSEST, QUERY_ALL, QUERY_ANY };
 
-/* One float per child of a node, for the node test (SSE: one register). */
-typedef union slab4 {
+/* One float per child of a node, for the node test (SSE: two registers,
+ * AVX: one, loaded unaligned). */
+typedef union slab8 {
     float f[BVH_WIDTH];
 #if MESH_SSE
-    __m128 v;
+    __m128 v[BVH_WIDTH / 4];
 #endif
-} slab4;
+} slab8;
 
 /* A node or leaf reference as the traversal stacks it. */
 typedef struct node_ref {
@@ -153,8 +176,10 @@ typedef struct node_ref {
 } node_ref;
 
 typedef struct query {
-    /* The leaf loop (query_leaf or its FMA copy). */
+    /* The leaf loop (query_leaf or its AVX2 copy) and whether the AVX2
+     * copy of the traversal runs (cpu_has_avx2_fma). */
     int (*leaf)(struct query *q, int mode, int32_t first, int32_t count);
+    int avx2;
     const isect_mesh   *mesh;
     const bvh_node     *nodes;  /* the mesh's, for the traversal */
     const mesh_prim    *prims;
@@ -165,9 +190,9 @@ typedef struct query {
     int       frame_ready;
     /* Node test (float, scaled time): per axis the origin moved toward
      * the near and toward the far plane and the reciprocal of the scaled
-     * direction, each repeated for the four children; */
-    slab4  slab_org_near[3], slab_org_far[3], slab_inv[3];
-    slab4  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
+     * direction, each repeated for the eight children; */
+    slab8  slab_org_near[3], slab_org_far[3], slab_inv[3];
+    slab8  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
                                      down and up */
     double slab_scale;            /* 1 / sigma; 0: the node test culls nothing */
     int32_t plane_offset[6];      /* byte offsets in bvh_node.bounds of the near
@@ -237,6 +262,15 @@ static const int32_t plane_offsets[8][6] = {
     PLANE_OFFSETS(0), PLANE_OFFSETS(1), PLANE_OFFSETS(2), PLANE_OFFSETS(3),
     PLANE_OFFSETS(4), PLANE_OFFSETS(5), PLANE_OFFSETS(6), PLANE_OFFSETS(7),
 };
+
+#if MESH_SSE
+/* Every lane of s set to the four equal floats of x. */
+static inline void slab_fill(slab8 *s, __m128 x)
+{
+    for (int h = 0; h < BVH_WIDTH / 4; h++)
+        s->v[h] = x;
+}
+#endif
 
 /* Outside the node test's range: a test that passes every child. With a
  * zero origin and reciprocal each slab time is (b - 0) * 0, which is 0 for
@@ -320,18 +354,18 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
         _mm_shuffle_epi32(_mm_castpd_si128(flat_xy), _MM_SHUFFLE(2, 0, 2, 0)),
         _mm_shuffle_epi32(_mm_castpd_si128(flat_zz), _MM_SHUFFLE(2, 0, 2, 0))));
     __m128 inv = _mm_or_ps(_mm_and_ps(flat, flat_inv), _mm_andnot_ps(flat, steep_inv));
-    q->slab_org_near[0].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(0, 0, 0, 0));
-    q->slab_org_near[1].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(1, 1, 1, 1));
-    q->slab_org_near[2].v = _mm_shuffle_ps(on, on, _MM_SHUFFLE(2, 2, 2, 2));
-    q->slab_org_far[0].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(0, 0, 0, 0));
-    q->slab_org_far[1].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(1, 1, 1, 1));
-    q->slab_org_far[2].v = _mm_shuffle_ps(of, of, _MM_SHUFFLE(2, 2, 2, 2));
-    q->slab_inv[0].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0));
-    q->slab_inv[1].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(1, 1, 1, 1));
-    q->slab_inv[2].v = _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(2, 2, 2, 2));
+    slab_fill(&q->slab_org_near[0], _mm_shuffle_ps(on, on, _MM_SHUFFLE(0, 0, 0, 0)));
+    slab_fill(&q->slab_org_near[1], _mm_shuffle_ps(on, on, _MM_SHUFFLE(1, 1, 1, 1)));
+    slab_fill(&q->slab_org_near[2], _mm_shuffle_ps(on, on, _MM_SHUFFLE(2, 2, 2, 2)));
+    slab_fill(&q->slab_org_far[0], _mm_shuffle_ps(of, of, _MM_SHUFFLE(0, 0, 0, 0)));
+    slab_fill(&q->slab_org_far[1], _mm_shuffle_ps(of, of, _MM_SHUFFLE(1, 1, 1, 1)));
+    slab_fill(&q->slab_org_far[2], _mm_shuffle_ps(of, of, _MM_SHUFFLE(2, 2, 2, 2)));
+    slab_fill(&q->slab_inv[0], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0)));
+    slab_fill(&q->slab_inv[1], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(1, 1, 1, 1)));
+    slab_fill(&q->slab_inv[2], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(2, 2, 2, 2)));
     int negative = _mm_movemask_pd(dxy) | (_mm_movemask_pd(dzz) & 1) << 2;
-    q->slab_tmin.v = _mm_set1_ps(slab_time_down(ray->tmin * scale));
-    q->slab_limit.v = _mm_set1_ps(slab_time_up(ray->tmax * scale));
+    slab_fill(&q->slab_tmin, _mm_set1_ps(slab_time_down(ray->tmin * scale)));
+    slab_fill(&q->slab_limit, _mm_set1_ps(slab_time_up(ray->tmax * scale)));
 #else
     int negative = 0;
     for (int k = 0; k < 3; k++) {
@@ -357,17 +391,18 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
 }
 
 static int query_leaf(query *q, int mode, int32_t first, int32_t count);
-#if MESH_FMA
-static int query_leaf_fma(query *q, int mode, int32_t first, int32_t count);
+#if MESH_AVX2
+static int query_leaf_avx2(query *q, int mode, int32_t first, int32_t count);
 #endif
 
 static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
                        const isect_params *prm)
 {
+    q->avx2 = cpu_has_avx2_fma();
     q->leaf = query_leaf;
-#if MESH_FMA
-    if (__builtin_cpu_supports("fma"))
-        q->leaf = query_leaf_fma;
+#if MESH_AVX2
+    if (q->avx2)
+        q->leaf = query_leaf_avx2;
 #endif
     q->mesh = m;
     q->nodes = m->tree.nodes;
@@ -553,29 +588,23 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
     return 0;
 }
 
-/* The leaf loop, compiled twice: for any x86-64 (libm's fma) and, where
- * GCC or clang target x86-64, for CPUs with FMA (one instruction per fma:
- * the exact triangle test has nine, the pre-filter none). fma rounds
- * correctly either way, and the library builds with -ffp-contract=off so
- * no other operation is fused: both copies give the same bits (the mesh
- * tests compare this loop, which runs the FMA copy on such a CPU, with the
- * triangle test built for any x86-64; the no-SIMD build runs the other).
- * query_init picks one per query (q->leaf). */
+/* The leaf loop, compiled for any x86-64 and (see MESH_AVX2) for AVX2 and
+ * FMA, where the exact triangle test's nine fma are instructions instead
+ * of libm calls; query_init picks one per query (q->leaf). */
 static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 {
     return query_leaf_body(q, mode, first, count);
 }
 
-#if MESH_FMA
-__attribute__((target("fma"))) static int query_leaf_fma(query *q, int mode, int32_t first,
-                                                         int32_t count)
+#if MESH_AVX2
+MESH_TARGET_AVX2 static int query_leaf_avx2(query *q, int mode, int32_t first, int32_t count)
 {
     return query_leaf_body(q, mode, first, count);
 }
 #endif
 
 /* A hint to start loading memory the traversal will soon read: two cache
- * lines (a whole node, or two lines of prims). Traversal of a large mesh is
+ * lines (half a node, or two lines of prims). Traversal of a large mesh is
  * bound by the latency of these loads; the hint overlaps them with other
  * work. GCC and clang only; elsewhere nothing. */
 #if defined(__GNUC__) || defined(__clang__)
@@ -584,12 +613,23 @@ __attribute__((target("fma"))) static int query_leaf_fma(query *q, int mode, int
 #define PREFETCH(p) ((void)(p))
 #endif
 
-/* walk is written once and compiled four times: for the scalar queries
+/* walk is written once and compiled eight times: for the scalar queries
  * and for the batch (its yield argument), each with and without the loose
- * handling (may_loose), the two a constant in each copy. */
+ * handling (may_loose), each for any x86-64 and for AVX2 (avx2), the three
+ * a constant in each copy. */
 
-/* The index of the lowest set bit of a 4-bit mask (C99 has no ctz). */
-static const int8_t lowest_bit[16] = { 0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0 };
+/* The index of the lowest set bit of a nonzero child mask. */
+static inline int lowest_bit(unsigned m)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(m);
+#else
+    int i = 0;
+    for (; (m & 1u) == 0; m >>= 1)
+        i++;
+    return i;
+#endif
+}
 
 /* Where a traversal is: the reference it visits next (ref, count as in
  * node_ref) and the stacked ones it will come back to. */
@@ -606,54 +646,69 @@ static void walker_init(walker *w)
     w->sp = 0;
 }
 
-/* The four floats of a plane of node n's bounds, by byte offset. */
+/* The eight floats of a plane of node n's bounds, by byte offset. */
 static inline const float *node_plane(const bvh_node *n, int32_t offset)
 {
     return (const float *)(const void *)((const char *)n->bounds + offset);
 }
 
-/* The node test of node n's four children: bit c set when child c may
+#if MESH_SSE
+/* All ones in lane c where bit c of the 4-bit m is set. */
+static inline __m128 lane_mask4(unsigned m)
+{
+    const __m128i bit = _mm_set_epi32(8, 4, 2, 1);
+    return _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)m), bit), bit));
+}
+
+/* x where mask is clear, y where it is set. */
+static inline __m128 lane_select4(__m128 mask, __m128 x, __m128 y)
+{
+    return _mm_or_ps(_mm_and_ps(mask, y), _mm_andnot_ps(mask, x));
+}
+#endif
+
+/* The node test of node n's eight children: bit c set when child c may
  * hold a hit that matters, entry[c] where the ray enters its padded box
  * (scaled time, -inf for a loose child). A NaN from 0 * inf (a flat axis
  * on a slab plane) is the first operand of max and min, which then return
- * the second: that slab does not constrain the interval. may_loose is a
+ * the second: that slab does not constrain the interval. A loose child's
+ * interval starts as the whole line (it is culled only by its box's
+ * slabs), and it is stacked with entry -inf (never dropped). may_loose is a
  * constant: 0 for a mesh without polygon faces (no node is loose). */
 static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
                                         float entry[BVH_WIDTH], int may_loose)
 {
 #if MESH_SSE
-    __m128 tn = q->slab_tmin.v, tf = q->slab_limit.v;
-    __m128 loose_lo = tf; /* (unused unless n->loose) */
-    if (may_loose && n->loose != 0) {
-        /* A loose child's interval starts as the whole line. */
-        __m128 bits = _mm_castsi128_ps(_mm_set_epi32(
-            -(int32_t)((n->loose >> 3) & 1u), -(int32_t)((n->loose >> 2) & 1u),
-            -(int32_t)((n->loose >> 1) & 1u), -(int32_t)(n->loose & 1u)));
-        loose_lo = _mm_or_ps(_mm_and_ps(bits, _mm_set1_ps(-INFINITY)),
-                             _mm_andnot_ps(bits, _mm_set1_ps(INFINITY)));
-        __m128 loose_hi = _mm_or_ps(_mm_and_ps(bits, _mm_set1_ps(INFINITY)),
-                                    _mm_andnot_ps(bits, _mm_set1_ps(-INFINITY)));
-        tn = _mm_min_ps(tn, loose_lo);
-        tf = _mm_max_ps(tf, loose_hi);
-    }
-    /* Written out per axis (the compiler keeps the loop otherwise). */
+    unsigned mask = 0;
+    for (int h = 0; h < BVH_WIDTH / 4; h++) {
+        __m128 tn = q->slab_tmin.v[h], tf = q->slab_limit.v[h];
+        __m128 loose = _mm_setzero_ps();
+        if (may_loose && n->loose != 0) {
+            loose = lane_mask4(((unsigned)n->loose >> (4 * h)) & 15u);
+            tn = lane_select4(loose, tn, _mm_set1_ps(-INFINITY));
+            tf = lane_select4(loose, tf, _mm_set1_ps(INFINITY));
+        }
+        /* Written out per axis (the compiler keeps the loop otherwise). */
 #define SLAB_AXIS(k)                                                                      \
-    tn = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[k])), \
-                                          q->slab_org_near[k].v),                         \
-                               q->slab_inv[k].v),                                         \
-                    tn);                                                                  \
-    tf = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[3 + k])), \
-                                          q->slab_org_far[k].v),                          \
-                               q->slab_inv[k].v),                                         \
-                    tf)
-    SLAB_AXIS(0);
-    SLAB_AXIS(1);
-    SLAB_AXIS(2);
+    tn = _mm_max_ps(                                                                      \
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[k]) + 4 * h),     \
+                              q->slab_org_near[k].v[h]),                                  \
+                   q->slab_inv[k].v[h]),                                                  \
+        tn);                                                                              \
+    tf = _mm_min_ps(                                                                      \
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[3 + k]) + 4 * h), \
+                              q->slab_org_far[k].v[h]),                                   \
+                   q->slab_inv[k].v[h]),                                                  \
+        tf)
+        SLAB_AXIS(0);
+        SLAB_AXIS(1);
+        SLAB_AXIS(2);
 #undef SLAB_AXIS
-    unsigned mask = (unsigned)_mm_movemask_ps(_mm_cmple_ps(tn, tf));
-    if (may_loose && n->loose != 0)
-        tn = _mm_min_ps(tn, loose_lo); /* stacked loose subtrees are never dropped */
-    _mm_storeu_ps(entry, tn);
+        mask |= (unsigned)_mm_movemask_ps(_mm_cmple_ps(tn, tf)) << (4 * h);
+        if (may_loose && n->loose != 0)
+            tn = lane_select4(loose, tn, _mm_set1_ps(-INFINITY));
+        _mm_storeu_ps(entry + 4 * h, tn);
+    }
     return mask;
 #else
     float tf[BVH_WIDTH];
@@ -684,6 +739,47 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
 #endif
 }
 
+#if MESH_AVX2
+/* node_test with the eight children in one AVX register: the same float
+ * operations lane by lane (vmaxps and vminps return the second operand for
+ * a NaN as maxps and minps do), so the same mask and entries. Not forced
+ * inline: it is inlined into the AVX2 copies of the traversal and never
+ * runs elsewhere. */
+MESH_TARGET_AVX2 static inline unsigned node_test_avx2(const query *q, const bvh_node *n,
+                                                       float entry[BVH_WIDTH], int may_loose)
+{
+    __m256 tn = _mm256_loadu_ps(q->slab_tmin.f), tf = _mm256_loadu_ps(q->slab_limit.f);
+    __m256 loose = _mm256_setzero_ps();
+    if (may_loose && n->loose != 0) {
+        const __m256i bit = _mm256_set_epi32(128, 64, 32, 16, 8, 4, 2, 1);
+        loose = _mm256_castsi256_ps(
+            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(n->loose), bit), bit));
+        tn = _mm256_blendv_ps(tn, _mm256_set1_ps(-INFINITY), loose);
+        tf = _mm256_blendv_ps(tf, _mm256_set1_ps(INFINITY), loose);
+    }
+#define SLAB_AXIS(k)                                                                      \
+    tn = _mm256_max_ps(                                                                   \
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node_plane(n, q->plane_offset[k])),    \
+                                    _mm256_loadu_ps(q->slab_org_near[k].f)),              \
+                      _mm256_loadu_ps(q->slab_inv[k].f)),                                 \
+        tn);                                                                              \
+    tf = _mm256_min_ps(                                                                   \
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node_plane(n, q->plane_offset[3 + k])), \
+                                    _mm256_loadu_ps(q->slab_org_far[k].f)),               \
+                      _mm256_loadu_ps(q->slab_inv[k].f)),                                 \
+        tf)
+    SLAB_AXIS(0);
+    SLAB_AXIS(1);
+    SLAB_AXIS(2);
+#undef SLAB_AXIS
+    unsigned mask = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
+    if (may_loose && n->loose != 0)
+        tn = _mm256_blendv_ps(tn, _mm256_set1_ps(-INFINITY), loose);
+    _mm256_storeu_ps(entry, tn);
+    return mask;
+}
+#endif
+
 /* Asks for the memory reference r (as in node_ref, count its leaf size)
  * points at: an inner node, or every prim of a leaf (a leaf's faces are
  * all tested, so all of them are needed). */
@@ -692,6 +788,7 @@ static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r, int32_t count)
     if (r >= 0) {
         const char *at = (const char *)&q->nodes[r];
         PREFETCH(at);
+        PREFETCH(at + 128);
     } else {
         const char *at = (const char *)&q->prims[~r], *end = (const char *)&q->prims[~r + count];
         for (; at < end; at += 128)
@@ -710,7 +807,8 @@ static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r, int32_t count)
  * memory arrives. Stacked references are not yielded on (they were asked
  * for when pushed). The state lives in locals in between (registers).
  */
-static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_loose)
+static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_loose,
+                              int avx2)
 {
     const bvh_node *nodes = q->nodes;
     int32_t ref = w->ref, count = w->count;
@@ -719,12 +817,19 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
         if (ref >= 0) {
             const bvh_node *n = &nodes[ref];
             float tn[BVH_WIDTH];
+#if MESH_AVX2
+            unsigned mask = avx2 ? node_test_avx2(q, n, tn, may_loose)
+                                 : node_test(q, n, tn, may_loose);
+#else
             unsigned mask = node_test(q, n, tn, may_loose);
+            (void)avx2;
+#endif
             if (mask != 0) {
                 /* Every hit child's memory is asked for as it is met: the
-                 * nearest is needed at once, the others when popped. Most visits hit one or two children: those
-                 * without a sort; three or four by insertion. */
-                int first = lowest_bit[mask];
+                 * nearest is needed at once, the others when popped. Most
+                 * visits hit one or two children: those without a sort;
+                 * three or more by insertion. */
+                int first = lowest_bit(mask);
                 unsigned rest = mask & (mask - 1);
                 ref = n->child[first];
                 count = n->count[first];
@@ -733,7 +838,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                     node_ref a = { ref, count, tn[first] };
                     node_ref near;
                     if ((rest & (rest - 1)) == 0) {
-                        int second = lowest_bit[rest];
+                        int second = lowest_bit(rest);
                         node_ref b = { n->child[second], n->count[second], tn[second] };
                         prefetch_ref(q, b.ref, b.count);
                         int swap = b.entry < a.entry;
@@ -744,7 +849,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                         next[0] = a;
                         int k = 1;
                         for (unsigned m = rest; m != 0; m &= m - 1) {
-                            int c = lowest_bit[m];
+                            int c = lowest_bit(m);
                             node_ref r = { n->child[c], n->count[c], tn[c] };
                             prefetch_ref(q, r.ref, r.count);
                             int j = k++;
@@ -790,14 +895,30 @@ static int mesh_has_loose(const isect_mesh *m)
     return m->tree.nodes[0].loose != 0;
 }
 
+#if MESH_AVX2
+MESH_TARGET_AVX2 static void query_run_avx2(query *q, walker *w, int mode)
+{
+    if (mesh_has_loose(q->mesh))
+        walk(q, w, mode, 0, 1, 1);
+    else
+        walk(q, w, mode, 0, 0, 1);
+}
+#endif
+
 static void query_run(query *q, int mode)
 {
     walker w;
     walker_init(&w);
+#if MESH_AVX2
+    if (q->avx2) {
+        query_run_avx2(q, &w, mode);
+        return;
+    }
+#endif
     if (mesh_has_loose(q->mesh))
-        walk(q, &w, mode, 0, 1);
+        walk(q, &w, mode, 0, 1, 0);
     else
-        walk(q, &w, mode, 0, 0);
+        walk(q, &w, mode, 0, 0, 0);
 }
 
 int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
@@ -886,6 +1007,7 @@ typedef struct batch {
     double              center[3], extent; /* the mesh box (extent: largest side) */
     double              prev_org[3], prev_dir[3]; /* the last ray started (object
                                                      space); NaN before the first */
+    int                 direct_only;       /* 1: every ray traced at once */
 } batch;
 
 /* The mesh box from the root's children (empty children have lo > hi).
@@ -982,7 +1104,7 @@ static int lane_start(lane *l, batch *b)
         int follows = ray_follows(b, r);
         memcpy(b->prev_org, r->org, sizeof b->prev_org);
         memcpy(b->prev_dir, r->dir, sizeof b->prev_dir);
-        if (!follows) {
+        if (!follows && !b->direct_only) {
             walker_init(&l->w);
             return 1;
         }
@@ -992,18 +1114,19 @@ static int lane_start(lane *l, batch *b)
     return 0;
 }
 
-/* The batch loop, compiled with and without the loose handling. */
-static ALWAYS_INLINE int64_t batch_run(batch *b, int may_loose)
+/* The batch loop over lanes[count] (count <= BATCH_LANES), compiled with
+ * and without the loose handling, for any x86-64 and for AVX2. */
+static ALWAYS_INLINE int64_t batch_run(batch *b, lane *lanes, int count, int may_loose,
+                                       int avx2)
 {
-    lane lanes[BATCH_LANES];
     int active[BATCH_LANES], live = 0;
-    for (int l = 0; l < BATCH_LANES; l++) {
+    for (int l = 0; l < count; l++) {
         active[l] = lane_start(&lanes[l], b);
         live += active[l];
     }
     while (live > 0) {
-        for (int l = 0; l < BATCH_LANES; l++) {
-            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, b->mode, 1, may_loose))
+        for (int l = 0; l < count; l++) {
+            if (!active[l] || walk(&lanes[l].q, &lanes[l].w, b->mode, 1, may_loose, avx2))
                 continue;
             b->hit_count += lane_finish(&lanes[l], b);
             active[l] = lane_start(&lanes[l], b);
@@ -1012,6 +1135,15 @@ static ALWAYS_INLINE int64_t batch_run(batch *b, int may_loose)
     }
     return b->hit_count;
 }
+
+#if MESH_AVX2
+MESH_TARGET_AVX2 static int64_t batch_run_avx2(batch *b, lane *lanes, int count)
+{
+    if (mesh_has_loose(b->s->mesh))
+        return batch_run(b, lanes, count, 1, 1);
+    return batch_run(b, lanes, count, 0, 1);
+}
+#endif
 
 int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
                              const isect_ray *rays, int64_t n, const isect_params *prm,
@@ -1030,9 +1162,30 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     for (int k = 0; k < 3; k++)
         b.prev_org[k] = b.prev_dir[k] = NAN;
     batch_mesh_box(&b, s->mesh);
+    /* The lanes (7 KB each, mostly the traversal stack) on the heap, not
+     * on a thread's stack; without memory, every ray is traced at once in
+     * one lane on the stack (the same records, without the overlap). */
+    int count = n < BATCH_LANES ? (int)n : BATCH_LANES;
+    lane *lanes = count > 0 ? malloc((size_t)count * sizeof *lanes) : NULL;
+    lane one;
+    b.direct_only = lanes == NULL;
+    if (lanes == NULL) {
+        lanes = &one;
+        count = 1;
+    }
+    int64_t hits;
+#if MESH_AVX2
+    if (cpu_has_avx2_fma())
+        hits = batch_run_avx2(&b, lanes, count);
+    else
+#endif
     if (mesh_has_loose(s->mesh))
-        return batch_run(&b, 1);
-    return batch_run(&b, 0);
+        hits = batch_run(&b, lanes, count, 1, 0);
+    else
+        hits = batch_run(&b, lanes, count, 0, 0);
+    if (lanes != &one)
+        free(lanes);
+    return hits;
 }
 
 /* ------------------------------------------------------------ containment
