@@ -51,6 +51,11 @@ step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/noavx2/tests/$t ] && step "$t [SSE2 only]" $B/noavx2/tests/$t
 done
+# The batch's fallback when its lanes cannot be allocated (every ray traced
+# at once), forced by a test build.
+step "mesh tests build without batch lanes" make --no-print-directory -s B=$B/nolanes \
+    OPT="-O2 -DISECT_TEST_NO_LANES" $B/nolanes/tests/test_mesh
+[ -x $B/nolanes/tests/test_mesh ] && step "test_mesh [no batch lanes]" $B/nolanes/tests/test_mesh
 if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json

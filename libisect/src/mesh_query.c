@@ -1164,9 +1164,14 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     batch_mesh_box(&b, s->mesh);
     /* The lanes (7 KB each, mostly the traversal stack) on the heap, not
      * on a thread's stack; without memory, every ray is traced at once in
-     * one lane on the stack (the same records, without the overlap). */
+     * one lane on the stack (the same records, without the overlap). A test
+     * build defines ISECT_TEST_NO_LANES to take that path. */
     int count = n < BATCH_LANES ? (int)n : BATCH_LANES;
+#ifdef ISECT_TEST_NO_LANES
+    lane *lanes = NULL;
+#else
     lane *lanes = count > 0 ? malloc((size_t)count * sizeof *lanes) : NULL;
+#endif
     lane one;
     b.direct_only = lanes == NULL;
     if (lanes == NULL) {
