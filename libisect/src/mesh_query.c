@@ -613,11 +613,6 @@ MESH_TARGET_AVX2 static int query_leaf_avx2(query *q, int mode, int32_t first, i
 #define PREFETCH(p) ((void)(p))
 #endif
 
-/* walk is written once and compiled eight times: for the scalar queries
- * and for the batch (its yield argument), each with and without the loose
- * handling (may_loose), each for any x86-64 and for AVX2 (avx2), the three
- * a constant in each copy. */
-
 /* The index of the lowest set bit of a nonzero child mask. */
 static inline int lowest_bit(unsigned m)
 {
@@ -806,6 +801,11 @@ static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r, int32_t count)
  * asked for: the batch then runs other traversals while that child's
  * memory arrives. Stacked references are not yielded on (they were asked
  * for when pushed). The state lives in locals in between (registers).
+ *
+ * walk is written once and compiled eight times: for the scalar queries
+ * and for the batch (its yield argument), each with and without the loose
+ * handling (may_loose), each for any x86-64 and for AVX2 (avx2), the three
+ * a constant in each copy.
  */
 static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_loose,
                               int avx2)
@@ -976,11 +976,12 @@ int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray 
  *
  * Either way each ray runs exactly the steps mesh_hit_first runs
  * (query_init, the tmin > tmax miss, query_run's steps, at once or one at a
- * time; no state is shared between rays), and each ray passes ray_check,
- * shape_object_ray, batch_record and shape_hits_to_world as batch.c's
- * per-ray loop over shape_ray_first does, so every record and the returned
- * count are bit for bit that loop's. Rays finish out of order; each writes
- * only its own record.
+ * time; no traversal state is shared between rays, ray_follows only picks
+ * which way), and each ray passes ray_check, shape_object_ray,
+ * batch_record and shape_hits_to_world as batch.c's per-ray loop over
+ * shape_ray_first does, so every record and the returned count are bit for
+ * bit that loop's. Rays finish out of order; each writes only its own
+ * record.
  */
 #define BATCH_LANES 8
 
