@@ -176,10 +176,6 @@ typedef struct node_ref {
 } node_ref;
 
 typedef struct query {
-    /* The leaf loop (query_leaf or its AVX2 copy) and whether the AVX2
-     * copy of the traversal runs (cpu_has_avx2_fma). */
-    int (*leaf)(struct query *q, int mode, int32_t first, int32_t count);
-    int avx2;
     const isect_mesh   *mesh;
     const bvh_node     *nodes;  /* the mesh's, for the traversal */
     const mesh_prim    *prims;
@@ -390,20 +386,9 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
     memcpy(q->plane_offset, plane_offsets[negative], sizeof q->plane_offset);
 }
 
-static int query_leaf(query *q, int mode, int32_t first, int32_t count);
-#if MESH_AVX2
-static int query_leaf_avx2(query *q, int mode, int32_t first, int32_t count);
-#endif
-
 static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
                        const isect_params *prm)
 {
-    q->avx2 = cpu_has_avx2_fma();
-    q->leaf = query_leaf;
-#if MESH_AVX2
-    if (q->avx2)
-        q->leaf = query_leaf_avx2;
-#endif
     q->mesh = m;
     q->nodes = m->tree.nodes;
     q->prims = m->prims;
@@ -562,8 +547,7 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
                 continue;
             /* The plane precomputed (zero: triangle_hit_framed never hits
              * this face); the face is not collinear (degenerate faces are
-             * not in the BVH), so the exact collinearity test is skipped:
-             * triangle_hit_plane_framed's test, inline. */
+             * not in the BVH), so the exact collinearity test is skipped. */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
             hit = triangle_hit(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, p->n, 1, &h);
@@ -590,7 +574,7 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
 
 /* The leaf loop, compiled for any x86-64 and (see MESH_AVX2) for AVX2 and
  * FMA, where the exact triangle test's nine fma are instructions instead
- * of libm calls; query_init picks one per query (q->leaf). */
+ * of libm calls; the walk's copy for each calls its own (query_leaf_for). */
 static int query_leaf(query *q, int mode, int32_t first, int32_t count)
 {
     return query_leaf_body(q, mode, first, count);
@@ -602,6 +586,19 @@ MESH_TARGET_AVX2 static int query_leaf_avx2(query *q, int mode, int32_t first, i
     return query_leaf_body(q, mode, first, count);
 }
 #endif
+
+/* The leaf loop of the traversal's copy for any x86-64 (avx2 0) or for
+ * AVX2 (avx2 1, a constant). */
+static ALWAYS_INLINE int query_leaf_for(query *q, int mode, int32_t first, int32_t count,
+                                        int avx2)
+{
+#if MESH_AVX2
+    if (avx2)
+        return query_leaf_avx2(q, mode, first, count);
+#endif
+    (void)avx2;
+    return query_leaf(q, mode, first, count);
+}
 
 /* A hint to start loading memory the traversal will soon read: two cache
  * lines (half a node, or two lines of prims). Traversal of a large mesh is
@@ -872,7 +869,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
                 }
                 continue;
             }
-        } else if (count > 0 && q->leaf(q, mode, ~ref, count)) {
+        } else if (count > 0 && query_leaf_for(q, mode, ~ref, count, avx2)) {
             return 0;
         }
         for (;;) {
@@ -905,15 +902,19 @@ MESH_TARGET_AVX2 static void query_run_avx2(query *q, walker *w, int mode)
 }
 #endif
 
-static void query_run(query *q, int mode)
+/* The whole traversal of q, by the copy for AVX2 when avx2 is set (the
+ * caller's cpu_has_avx2_fma, asked once per call or batch). */
+static void query_run(query *q, int mode, int avx2)
 {
     walker w;
     walker_init(&w);
 #if MESH_AVX2
-    if (q->avx2) {
+    if (avx2) {
         query_run_avx2(q, &w, mode);
         return;
     }
+#else
+    (void)avx2;
 #endif
     if (mesh_has_loose(q->mesh))
         walk(q, &w, mode, 0, 1, 0);
@@ -931,14 +932,14 @@ int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_r
         return 0;
     if (prm->flags & ISECT_ANY_HIT) {
         /* Occlusion: the first hit found, as mesh_hit_first gives it. */
-        query_run(&q, QUERY_ANY);
+        query_run(&q, QUERY_ANY, cpu_has_avx2_fma());
         if (q.found && cap > 0)
             hits[0] = q.best;
         return q.found;
     }
     q.hits = hits;
     q.cap = cap;
-    query_run(&q, QUERY_ALL);
+    query_run(&q, QUERY_ALL, cpu_has_avx2_fma());
     heap_sort(hits, q.count < cap ? q.count : cap);
     return q.count;
 }
@@ -951,7 +952,8 @@ int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray 
     query_init(&q, s->mesh, ray, prm);
     if (!(ray->tmin <= ray->tmax))
         return 0;
-    query_run(&q, (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST);
+    int mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
+    query_run(&q, mode, cpu_has_avx2_fma());
     if (q.found)
         *out = q.best;
     return q.found;
@@ -1009,6 +1011,7 @@ typedef struct batch {
     double              prev_org[3], prev_dir[3]; /* the last ray started (object
                                                      space); NaN before the first */
     int                 direct_only;       /* 1: every ray traced at once */
+    int                 avx2;              /* cpu_has_avx2_fma() */
 } batch;
 
 /* The mesh box from the root's children (empty children have lo > hi).
@@ -1109,7 +1112,7 @@ static int lane_start(lane *l, batch *b)
             walker_init(&l->w);
             return 1;
         }
-        query_run(&l->q, b->mode); /* as mesh_hit_first */
+        query_run(&l->q, b->mode, b->avx2); /* as mesh_hit_first */
         b->hit_count += lane_finish(l, b);
     }
     return 0;
@@ -1160,6 +1163,7 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     b.prm = prm;
     b.closest = closest;
     b.mode = (prm->flags & ISECT_ANY_HIT) ? QUERY_ANY : QUERY_CLOSEST;
+    b.avx2 = cpu_has_avx2_fma();
     for (int k = 0; k < 3; k++)
         b.prev_org[k] = b.prev_dir[k] = NAN;
     batch_mesh_box(&b, s->mesh);
@@ -1181,7 +1185,7 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     }
     int64_t hits;
 #if MESH_AVX2
-    if (cpu_has_avx2_fma())
+    if (b.avx2)
         hits = batch_run_avx2(&b, lanes, count);
     else
 #endif

@@ -32,14 +32,6 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
 int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
                    int *nonzero);
 
-/* triangle_hit_framed with the plane given: normal and nonzero from
- * triangle_plane(a, b, c) returning 1 (nonzero may also be 1 when a, b, c
- * are known not to be collinear): bit for bit its result and record. */
-int triangle_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
-                              const isect_params *prm, const double a[3], const double b[3],
-                              const double c[3], const double normal[3], int nonzero,
-                              isect_hit *out);
-
 /* The plane of the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
  * v + 3*i; the caller has checked every idx[i]), n >= 3: unit Newell normal with vertices taken relative to the
  * centroid, and the centroid. 1, or 0 (normal and centroid zero) for a

@@ -28,7 +28,7 @@
  * underflowed product tails. With every coordinate |x| <= 2^100 the scaled
  * |N_k| is above 2^-801 2^-200, far above that: orient2_sign returns the
  * true nonzero sign and collinear3 returns 0. Outside that range (and on the
- * rescaled path of triangle_normal) the exact test always runs.
+ * rescaled path of triangle_plane) the exact test always runs.
  */
 static int cross_certainly_nonzero(const double a[3], const double b[3], const double c[3],
                                    const double p[3], const double q[3], const double n[3])
@@ -49,8 +49,8 @@ static int cross_certainly_nonzero(const double a[3], const double b[3], const d
  * underflow, the vertices are first scaled by one power of two (exact up to
  * subnormal tails), which leaves the direction unchanged. *nonzero is 1
  * when the exact cross product is certainly nonzero (see above), else 0. */
-static int triangle_normal(const double a[3], const double b[3], const double c[3],
-                           double normal[3], int *nonzero)
+int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
+                   int *nonzero)
 {
     double e1[3], e2[3], n[3], p[3], q[3];
     *nonzero = 0;
@@ -90,20 +90,6 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
                         isect_hit *out)
 {
     return triangle_hit(f, ray, prm, a, b, c, NULL, 0, out);
-}
-
-int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
-                   int *nonzero)
-{
-    return triangle_normal(a, b, c, normal, nonzero);
-}
-
-int triangle_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
-                              const isect_params *prm, const double a[3], const double b[3],
-                              const double c[3], const double normal[3], int nonzero,
-                              isect_hit *out)
-{
-    return triangle_hit(f, ray, prm, a, b, c, normal, nonzero, out);
 }
 
 int triangle_check(const isect_shape *s)
