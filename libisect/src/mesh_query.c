@@ -1016,7 +1016,7 @@ typedef struct batch {
 
 /* The mesh box from the root's children (empty children have lo > hi).
  * Out-of-range coordinates give an infinite or NaN extent: ray_follows
- * then says no, and every ray runs in a lane, as before. */
+ * then says no, and every ray runs in a lane. */
 static void batch_mesh_box(batch *b, const isect_mesh *m)
 {
     const bvh_node *root = &m->tree.nodes[0];

@@ -462,6 +462,17 @@ static void test_cube_exact(void)
 }
 
 /* The world-space mesh and the same mesh through a transform agree. */
+/* out = the 3x4 part of the row-major 4x4 mat applied to (p, w): w = 1 for
+ * a point, 0 for a direction. */
+static void affine_apply(const double mat[16], const double p[3], double w, double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = mat[4 * i] * p[0] + mat[4 * i + 1] * p[1] + mat[4 * i + 2] * p[2]
+             + mat[4 * i + 3] * w;
+    memcpy(out, r, sizeof r);
+}
+
 static void test_transformed(void)
 {
     const double origin[3] = { 0.0, 0.0, 0.0 };
@@ -495,13 +506,8 @@ static void test_transformed(void)
     fx_mesh world;
     memset(&world, 0, sizeof world);
     fx_append(&world, &m, 0.0, 0.0, 0.0);
-    for (int64_t i = 0; i < world.nv; i++) {
-        double p[3];
-        for (int r = 0; r < 3; r++)
-            p[r] = mat[4 * r] * m.v[3 * i] + mat[4 * r + 1] * m.v[3 * i + 1]
-                 + mat[4 * r + 2] * m.v[3 * i + 2] + mat[4 * r + 3];
-        memcpy(world.v + 3 * i, p, sizeof p);
-    }
+    for (int64_t i = 0; i < world.nv; i++)
+        affine_apply(mat, m.v + 3 * i, 1.0, world.v + 3 * i);
     isect_mesh *obj = fx_build(&m), *wm = fx_build(&world);
     isect_shape so = mesh_shape(obj, &x), sw = mesh_shape(wm, NULL);
     lcg g = { 99 };
@@ -612,15 +618,8 @@ static void test_batch_lanes(void)
                 }
                 obj_prev = rays[i];
                 if (transformed) { /* the object-space ray taken to world space */
-                    isect_ray obj = rays[i];
-                    for (int k = 0; k < 3; k++) {
-                        rays[i].org[k] = mat[4 * k + 3];
-                        rays[i].dir[k] = 0.0;
-                        for (int j = 0; j < 3; j++) {
-                            rays[i].org[k] += mat[4 * k + j] * obj.org[j];
-                            rays[i].dir[k] += mat[4 * k + j] * obj.dir[j];
-                        }
-                    }
+                    affine_apply(mat, rays[i].org, 1.0, rays[i].org);
+                    affine_apply(mat, rays[i].dir, 0.0, rays[i].dir);
                 }
                 switch (i % 97) {
                 case 5: rays[i].org[1] = NAN; break;         /* bad: ISECT_INVALID */
