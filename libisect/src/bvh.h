@@ -2,9 +2,10 @@
  * bvh.h — an 8-wide bounding-volume hierarchy over boxed items (the faces of
  * a mesh): built as a binary tree by binned SAH (Wald, "On fast
  * Construction of SAH-based Bounding Volume Hierarchies", IRT 2007), then
- * collapsed to eight children per node (each node takes the children of its
- * largest inner children, as in Wald, Benthin & Boulos, "Getting rid of
- * packets", IRT 2008), a third of the binary depth: a traversal pays per
+ * collapsed to at most eight children per node, the shape of least SAH
+ * cost found by the dynamic programme of Ylitie, Karras & Laine (HPG 2017;
+ * it may also merge a small subtree into one leaf), about a third of the
+ * binary depth: a traversal pays per
  * node visited (a cache miss on a large mesh, the branches of the visit on
  * any), so fewer, wider nodes are what makes it fast. Eight boxes are one
  * AVX register of floats or two SSE ones (measured on the icosphere
@@ -23,7 +24,8 @@
  * Depth. A split that SAH cannot make (all centroids in one bin) or any
  * split below binary depth BVH_MEDIAN_DEPTH halves the item range instead,
  * so the binary depth is at most BVH_MEDIAN_DEPTH + 32, and so is the depth
- * of the collapsed tree (each level consumes at least one binary level); a
+ * of the collapsed tree (each level consumes at least one binary level: a
+ * node's children are binary descendants of the subtree it stands for); a
  * traversal that pushes at most seven children per level never needs more
  * than BVH_STACK_SIZE >= 7 (BVH_MEDIAN_DEPTH + 32) entries.
  */
