@@ -530,15 +530,21 @@ static double box6_area(const float box[6])
     return half_area(&b);
 }
 
-/* cost with at most i children of child side of binary node b. */
-static double side_cost(const collapser *c, int32_t b, int side, int i)
+/* out[i - 1]: the cost of child side of binary node b with at most i
+ * children, i = 1..7 (the other side takes at least one). */
+static void side_costs(const collapser *c, int32_t b, int side, double out[BVH_WIDTH - 1])
 {
     const bin_node *n = &c->bin[b];
-    if (n->child[side] >= 0)
-        return c->table[n->child[side]].cost[i - 1];
-    if (n->count[side] == 0)
-        return 0.0; /* empty (the root of an empty or one-leaf tree) */
-    return box6_area(n->bounds[side]) * COLLAPSE_ITEM * n->count[side];
+    double leaf = 0.0; /* an empty side (the root of an empty or one-leaf tree) */
+    if (n->child[side] >= 0) {
+        for (int i = 0; i < BVH_WIDTH - 1; i++)
+            out[i] = c->table[n->child[side]].cost[i];
+        return;
+    }
+    if (n->count[side] != 0)
+        leaf = box6_area(n->bounds[side]) * COLLAPSE_ITEM * n->count[side];
+    for (int i = 0; i < BVH_WIDTH - 1; i++)
+        out[i] = leaf;
 }
 
 /* Fills table[b] from its children's (post-order); area: A(b). */
@@ -561,13 +567,16 @@ static void collapse_cost(collapser *c, int32_t b, double area)
             e->items += n->count[side];
         }
     }
+    double side[2][BVH_WIDTH - 1];
+    side_costs(c, b, 0, side[0]);
+    side_costs(c, b, 1, side[1]);
     double best_split[BVH_WIDTH + 1];
     uint8_t best_k[BVH_WIDTH + 1];
     for (int j = 2; j <= BVH_WIDTH; j++) {
         best_k[j] = 1;
-        best_split[j] = side_cost(c, b, 0, 1) + side_cost(c, b, 1, j - 1);
+        best_split[j] = side[0][0] + side[1][j - 2];
         for (int k = 2; k < j; k++) {
-            double d = side_cost(c, b, 0, k) + side_cost(c, b, 1, j - k);
+            double d = side[0][k - 1] + side[1][j - k - 1];
             if (d < best_split[j]) {
                 best_split[j] = d;
                 best_k[j] = (uint8_t)k;
