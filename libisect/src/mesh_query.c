@@ -158,15 +158,6 @@ static int cpu_has_avx2_fma(void)
 
 enum query_mode { QUERY_CLOSEST, QUERY_ALL, QUERY_ANY };
 
-/* One float per child of a node, for the node test (SSE: two registers,
- * AVX: one, loaded unaligned). */
-typedef union slab8 {
-    float f[BVH_WIDTH];
-#if MESH_SSE
-    __m128 v[BVH_WIDTH / 4];
-#endif
-} slab8;
-
 /* A node or leaf reference as the traversal stacks it. */
 typedef struct node_ref {
     int32_t ref;   /* >= 0 inner node, < 0 leaf ~first */
@@ -184,11 +175,13 @@ typedef struct query {
     ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
                               misses every box never pays for it */
     int       frame_ready;
-    /* Node test (float, scaled time): per axis the origin moved toward
-     * the near and toward the far plane and the reciprocal of the scaled
-     * direction, each repeated for the eight children; */
-    slab8  slab_org_near[3], slab_org_far[3], slab_inv[3];
-    slab8  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
+    /* Node test (float, scaled time): per axis x, y, z (the fourth float
+     * is padding) the origin moved toward the near and toward the far
+     * plane and the reciprocal of the scaled direction, broadcast to the
+     * eight children by the node test (one load either way; repeated
+     * copies cost the ray's set-up 350 bytes of stores); */
+    float  slab_org_near[4], slab_org_far[4], slab_inv[4];
+    float  slab_tmin, slab_limit; /* tmin and t_limit as scaled times, rounded
                                      down and up */
     double slab_scale;            /* 1 / sigma; 0: the node test culls nothing */
     int32_t plane_offset[6];      /* byte offsets in bvh_node.bounds of the near
@@ -242,9 +235,7 @@ static inline float slab_time_up(double x)
 /* The node test's bound for t_limit = t. */
 static inline void slab_set_limit(query *q, double t)
 {
-    float limit = q->slab_scale != 0.0 ? slab_time_up(t * q->slab_scale) : INFINITY;
-    for (int c = 0; c < BVH_WIDTH; c++)
-        q->slab_limit.f[c] = limit;
+    q->slab_limit = q->slab_scale != 0.0 ? slab_time_up(t * q->slab_scale) : INFINITY;
 }
 
 /* plane_offset for the signs of dir (bit k set: dir_k < 0): the near plane
@@ -259,15 +250,6 @@ static const int32_t plane_offsets[8][6] = {
     PLANE_OFFSETS(4), PLANE_OFFSETS(5), PLANE_OFFSETS(6), PLANE_OFFSETS(7),
 };
 
-#if MESH_SSE
-/* Every lane of s set to the four equal floats of x. */
-static inline void slab_fill(slab8 *s, __m128 x)
-{
-    for (int h = 0; h < BVH_WIDTH / 4; h++)
-        s->v[h] = x;
-}
-#endif
-
 /* Outside the node test's range: a test that passes every child. With a
  * zero origin and reciprocal each slab time is (b - 0) * 0, which is 0 for
  * a finite bound and NaN (no constraint) for an infinite one; with tmin
@@ -277,10 +259,8 @@ static void slab_init_unbounded(query *q)
     memset(q->slab_org_near, 0, sizeof q->slab_org_near);
     memset(q->slab_org_far, 0, sizeof q->slab_org_far);
     memset(q->slab_inv, 0, sizeof q->slab_inv);
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        q->slab_tmin.f[c] = -INFINITY;
-        q->slab_limit.f[c] = INFINITY;
-    }
+    q->slab_tmin = -INFINITY;
+    q->slab_limit = INFINITY;
     q->slab_scale = 0.0;
     memcpy(q->plane_offset, plane_offsets[0], sizeof q->plane_offset);
 }
@@ -350,18 +330,12 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
         _mm_shuffle_epi32(_mm_castpd_si128(flat_xy), _MM_SHUFFLE(2, 0, 2, 0)),
         _mm_shuffle_epi32(_mm_castpd_si128(flat_zz), _MM_SHUFFLE(2, 0, 2, 0))));
     __m128 inv = _mm_or_ps(_mm_and_ps(flat, flat_inv), _mm_andnot_ps(flat, steep_inv));
-    slab_fill(&q->slab_org_near[0], _mm_shuffle_ps(on, on, _MM_SHUFFLE(0, 0, 0, 0)));
-    slab_fill(&q->slab_org_near[1], _mm_shuffle_ps(on, on, _MM_SHUFFLE(1, 1, 1, 1)));
-    slab_fill(&q->slab_org_near[2], _mm_shuffle_ps(on, on, _MM_SHUFFLE(2, 2, 2, 2)));
-    slab_fill(&q->slab_org_far[0], _mm_shuffle_ps(of, of, _MM_SHUFFLE(0, 0, 0, 0)));
-    slab_fill(&q->slab_org_far[1], _mm_shuffle_ps(of, of, _MM_SHUFFLE(1, 1, 1, 1)));
-    slab_fill(&q->slab_org_far[2], _mm_shuffle_ps(of, of, _MM_SHUFFLE(2, 2, 2, 2)));
-    slab_fill(&q->slab_inv[0], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0)));
-    slab_fill(&q->slab_inv[1], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(1, 1, 1, 1)));
-    slab_fill(&q->slab_inv[2], _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(2, 2, 2, 2)));
+    _mm_storeu_ps(q->slab_org_near, on);
+    _mm_storeu_ps(q->slab_org_far, of);
+    _mm_storeu_ps(q->slab_inv, inv);
     int negative = _mm_movemask_pd(dxy) | (_mm_movemask_pd(dzz) & 1) << 2;
-    slab_fill(&q->slab_tmin, _mm_set1_ps(slab_time_down(ray->tmin * scale)));
-    slab_fill(&q->slab_limit, _mm_set1_ps(slab_time_up(ray->tmax * scale)));
+    q->slab_tmin = slab_time_down(ray->tmin * scale);
+    q->slab_limit = slab_time_up(ray->tmax * scale);
 #else
     int negative = 0;
     for (int k = 0; k < 3; k++) {
@@ -370,18 +344,14 @@ static void slab_init(query *q, double coord_bound, const isect_ray *ray)
         double toward = copysign((flat ? SLAB_PAD_FLAT : SLAB_PAD) * d, dk);
         float on = (float)(ray->org[k] + toward), of = (float)(ray->org[k] - toward);
         float ik = flat ? copysignf(INFINITY, (float)dk) : (float)(1.0 / dk * scale);
-        for (int c = 0; c < BVH_WIDTH; c++) {
-            q->slab_org_near[k].f[c] = on;
-            q->slab_org_far[k].f[c] = of;
-            q->slab_inv[k].f[c] = ik;
-        }
+        q->slab_org_near[k] = on;
+        q->slab_org_far[k] = of;
+        q->slab_inv[k] = ik;
         negative |= (signbit(dk) != 0) << k;
     }
-    float tmin = slab_time_down(ray->tmin * scale), limit = slab_time_up(ray->tmax * scale);
-    for (int c = 0; c < BVH_WIDTH; c++) {
-        q->slab_tmin.f[c] = tmin;
-        q->slab_limit.f[c] = limit;
-    }
+    q->slab_org_near[3] = q->slab_org_far[3] = q->slab_inv[3] = 0.0f;
+    q->slab_tmin = slab_time_down(ray->tmin * scale);
+    q->slab_limit = slab_time_up(ray->tmax * scale);
 #endif
     memcpy(q->plane_offset, plane_offsets[negative], sizeof q->plane_offset);
 }
@@ -673,7 +643,7 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
 #if MESH_SSE
     unsigned mask = 0;
     for (int h = 0; h < BVH_WIDTH / 4; h++) {
-        __m128 tn = q->slab_tmin.v[h], tf = q->slab_limit.v[h];
+        __m128 tn = _mm_set1_ps(q->slab_tmin), tf = _mm_set1_ps(q->slab_limit);
         __m128 loose = _mm_setzero_ps();
         if (may_loose && n->loose != 0) {
             loose = lane_mask4(((unsigned)n->loose >> (4 * h)) & 15u);
@@ -684,13 +654,13 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
 #define SLAB_AXIS(k)                                                                      \
     tn = _mm_max_ps(                                                                      \
         _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[k]) + 4 * h),     \
-                              q->slab_org_near[k].v[h]),                                  \
-                   q->slab_inv[k].v[h]),                                                  \
+                              _mm_set1_ps(q->slab_org_near[k])),                          \
+                   _mm_set1_ps(q->slab_inv[k])),                                          \
         tn);                                                                              \
     tf = _mm_min_ps(                                                                      \
         _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node_plane(n, q->plane_offset[3 + k]) + 4 * h), \
-                              q->slab_org_far[k].v[h]),                                   \
-                   q->slab_inv[k].v[h]),                                                  \
+                              _mm_set1_ps(q->slab_org_far[k])),                           \
+                   _mm_set1_ps(q->slab_inv[k])),                                          \
         tf)
         SLAB_AXIS(0);
         SLAB_AXIS(1);
@@ -707,14 +677,14 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
     unsigned loose = may_loose ? n->loose : 0u;
     for (int c = 0; c < BVH_WIDTH; c++) {
         int lc = (loose >> c) & 1u;
-        entry[c] = lc ? -INFINITY : q->slab_tmin.f[c];
-        tf[c] = lc ? INFINITY : q->slab_limit.f[c];
+        entry[c] = lc ? -INFINITY : q->slab_tmin;
+        tf[c] = lc ? INFINITY : q->slab_limit;
     }
     for (int k = 0; k < 3; k++) {
         const float *near = node_plane(n, q->plane_offset[k]);
         const float *far = node_plane(n, q->plane_offset[3 + k]);
-        float on = q->slab_org_near[k].f[0], of = q->slab_org_far[k].f[0];
-        float inv = q->slab_inv[k].f[0];
+        float on = q->slab_org_near[k], of = q->slab_org_far[k];
+        float inv = q->slab_inv[k];
         for (int c = 0; c < BVH_WIDTH; c++) {
             float t0 = (near[c] - on) * inv, t1 = (far[c] - of) * inv;
             entry[c] = t0 > entry[c] ? t0 : entry[c];
@@ -740,7 +710,7 @@ static ALWAYS_INLINE unsigned node_test(const query *q, const bvh_node *n,
 MESH_TARGET_AVX2 static inline unsigned node_test_avx2(const query *q, const bvh_node *n,
                                                        float entry[BVH_WIDTH], int may_loose)
 {
-    __m256 tn = _mm256_loadu_ps(q->slab_tmin.f), tf = _mm256_loadu_ps(q->slab_limit.f);
+    __m256 tn = _mm256_broadcast_ss(&q->slab_tmin), tf = _mm256_broadcast_ss(&q->slab_limit);
     __m256 loose = _mm256_setzero_ps();
     if (may_loose && n->loose != 0) {
         const __m256i bit = _mm256_set_epi32(128, 64, 32, 16, 8, 4, 2, 1);
@@ -752,13 +722,13 @@ MESH_TARGET_AVX2 static inline unsigned node_test_avx2(const query *q, const bvh
 #define SLAB_AXIS(k)                                                                      \
     tn = _mm256_max_ps(                                                                   \
         _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node_plane(n, q->plane_offset[k])),    \
-                                    _mm256_loadu_ps(q->slab_org_near[k].f)),              \
-                      _mm256_loadu_ps(q->slab_inv[k].f)),                                 \
+                                    _mm256_broadcast_ss(&q->slab_org_near[k])),           \
+                      _mm256_broadcast_ss(&q->slab_inv[k])),                              \
         tn);                                                                              \
     tf = _mm256_min_ps(                                                                   \
         _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node_plane(n, q->plane_offset[3 + k])), \
-                                    _mm256_loadu_ps(q->slab_org_far[k].f)),               \
-                      _mm256_loadu_ps(q->slab_inv[k].f)),                                 \
+                                    _mm256_broadcast_ss(&q->slab_org_far[k])),            \
+                      _mm256_broadcast_ss(&q->slab_inv[k])),                              \
         tf)
     SLAB_AXIS(0);
     SLAB_AXIS(1);
@@ -875,7 +845,7 @@ static ALWAYS_INLINE int walk(query *q, walker *w, int mode, int yield, int may_
             if (sp == 0)
                 return 0;
             node_ref r = w->stack[--sp];
-            if (!(r.entry > q->slab_limit.f[0])) {
+            if (!(r.entry > q->slab_limit)) {
                 ref = r.ref;
                 count = r.count;
                 break;
