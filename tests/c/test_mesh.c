@@ -96,12 +96,9 @@ static int hits_equal(const isect_hit *a, const isect_hit *b, int n)
     return memcmp(a, b, (size_t)n * sizeof *a) == 0;
 }
 
-/* A random ray for mesh m: origin in a box 1.5x the mesh's bounds, a
- * random direction or (aim != 0) one aimed at a random vertex; several
- * range and culling variants. */
-static isect_ray random_ray(const fx_mesh *m, lcg *g, int aim, uint32_t *flags)
+/* The bounds of mesh m's vertices. */
+static void mesh_bounds(const fx_mesh *m, double lo[3], double hi[3])
 {
-    double lo[3], hi[3];
     for (int k = 0; k < 3; k++)
         lo[k] = hi[k] = m->v[k];
     for (int64_t i = 1; i < m->nv; i++)
@@ -109,6 +106,14 @@ static isect_ray random_ray(const fx_mesh *m, lcg *g, int aim, uint32_t *flags)
             lo[k] = fmin(lo[k], m->v[3 * i + k]);
             hi[k] = fmax(hi[k], m->v[3 * i + k]);
         }
+}
+
+/* A random ray for mesh m with bounds lo, hi: origin in a box 1.5x the
+ * bounds, a random direction or (aim != 0) one aimed at a random vertex;
+ * several range and culling variants. */
+static isect_ray random_ray_in(const fx_mesh *m, const double lo[3], const double hi[3], lcg *g,
+                               int aim, uint32_t *flags)
+{
     isect_ray r;
     for (int k = 0; k < 3; k++) {
         double mid = 0.5 * (lo[k] + hi[k]), half = 0.85 * (hi[k] - lo[k]);
@@ -134,6 +139,13 @@ static isect_ray random_ray(const fx_mesh *m, lcg *g, int aim, uint32_t *flags)
         r.tmin = -INFINITY;
     *flags = kind == 4 || kind == 5 ? ISECT_CULL_BACK : 0u;
     return r;
+}
+
+static isect_ray random_ray(const fx_mesh *m, lcg *g, int aim, uint32_t *flags)
+{
+    double lo[3], hi[3];
+    mesh_bounds(m, lo, hi);
+    return random_ray_in(m, lo, hi, g, aim, flags);
 }
 
 /* ------------------------------------------------------------- creation */
@@ -581,11 +593,15 @@ static void test_batch_lanes(void)
 {
     enum { N = 4099 }; /* not a multiple of the lane count */
     const double origin[3] = { 0.0, 0.0, 0.0 };
-    fx_mesh m = fx_icosphere(4, origin, 1.0);
+    /* 81,920 triangles: above the size below which the batch traces every
+     * ray at once (LANES_MIN_BYTES in mesh_query.c), so the lanes run. */
+    fx_mesh m = fx_icosphere(6, origin, 1.0);
     fx_mesh l = fx_l_prism(0.7);
     fx_append(&m, &l, 1.2, 0.0, 0.0);
     fx_free(&l);
     isect_mesh *mesh = fx_build(&m);
+    double lo[3], hi[3];
+    mesh_bounds(&m, lo, hi);
     const double mat[16] = { 0.0, -2.0, 0.0, 1.0, 1.5, 0.0, 0.0, -0.5,
                              0.0, 0.3, 0.8, 2.0, 0.0, 0.0, 0.0, 1.0 };
     isect_xform x;
@@ -603,7 +619,7 @@ static void test_batch_lanes(void)
             isect_ray obj_prev;
             for (int i = 0; i < N; i++) {
                 uint32_t ignored;
-                rays[i] = random_ray(&m, &g, 1, &ignored);
+                rays[i] = random_ray_in(&m, lo, hi, &g, 1, &ignored);
                 /* Runs of coherent rays (the batch traces a ray that closely
                  * follows the one before at once, the others in lanes):
                  * every other run of 300 turns the previous object-space
