@@ -1156,6 +1156,7 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
     int count = n < BATCH_LANES ? (int)n : BATCH_LANES;
 #ifdef ISECT_TEST_NO_LANES
     lane *lanes = NULL;
+    (void)bytes;
 #else
     lane *lanes = count > 0 && bytes >= LANES_MIN_BYTES ? malloc((size_t)count * sizeof *lanes)
                                                         : NULL;
