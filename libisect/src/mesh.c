@@ -374,8 +374,7 @@ ISECT_API int64_t isect_mesh_bytes(const isect_mesh *mesh)
     bytes += corners * (int64_t)sizeof(int32_t);
     if (mesh->offsets != NULL)
         bytes += (mesh->face_count + 1) * (int64_t)sizeof(int64_t);
-    bytes += mesh->prim_count * (int64_t)sizeof(mesh_prim);
-    bytes += mesh->tree.node_count * (int64_t)sizeof(bvh_node);
+    bytes += mesh_traversal_bytes(mesh);
     return bytes;
 }
 

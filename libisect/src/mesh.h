@@ -60,6 +60,13 @@ static inline const double *mesh_vertex(const isect_mesh *m, int32_t i)
     return m->verts + 3 * (int64_t)i;
 }
 
+/* The memory a traversal reads: the BVH nodes and the prims. */
+static inline int64_t mesh_traversal_bytes(const isect_mesh *m)
+{
+    return m->tree.node_count * (int64_t)sizeof(bvh_node)
+         + m->prim_count * (int64_t)sizeof(mesh_prim);
+}
+
 /* An undirected edge use, for the topology passes: key = lo * vertex_count
  * + hi for the two vertex indices lo < hi, the face, and whether the face
  * runs hi -> lo. */

@@ -746,10 +746,11 @@ MESH_TARGET_AVX2 static inline unsigned node_test_avx2(const query *q, const bvh
  * node_ref) points at: a whole inner node, or a leaf's first prims (two
  * and a half: most leaves hold one to three; the hardware prefetcher
  * follows a larger leaf's in-order reads). The same four lines for both,
- * without a branch: which kind a child is cannot be predicted, and a
- * loop over a leaf's lines cost more than it saved (measured on the
- * icosphere benchmark: 2-5 % faster on every ray set than asking for
- * every line of a leaf). */
+ * with no loop over a leaf's lines, which cost more than it saved
+ * (measured on the icosphere benchmark: 2-5 % faster on every ray set
+ * than asking for every line of a leaf; picking the address by an integer
+ * mask instead of the conditional, which compiles to a branch, was 3-4 %
+ * slower). */
 static ALWAYS_INLINE void prefetch_ref(const query *q, int32_t r)
 {
     const char *at = r >= 0 ? (const char *)&q->nodes[r] : (const char *)&q->prims[~r];
@@ -1013,14 +1014,6 @@ static void batch_mesh_box(batch *b, const isect_mesh *m)
         b->extent = NAN;
 }
 
-/* max(|x|, |y|, |z|), by comparisons (fmax is a libm call). */
-static inline double max3_abs(double x, double y, double z)
-{
-    double m = fabs(x);
-    m = fabs(y) > m ? fabs(y) : m;
-    return fabs(z) > m ? fabs(z) : m;
-}
-
 /* 1 when ray r stays close to the previous ray across the mesh box: with
  * origins dO apart (max norm) and directions at angle a, the rays are at
  * most dO + sin(a) L apart within the box, L = max|o - center| + extent
@@ -1033,17 +1026,20 @@ static int ray_follows(const batch *b, const isect_ray *r)
     const double *o = r->org, *d = r->dir, *po = b->prev_org, *pd = b->prev_dir;
     double reach = FOLLOW_REACH * b->extent;
     /* Origins apart by more than the reach: no (most incoherent rays). */
-    double gap = max3_abs(o[0] - po[0], o[1] - po[1], o[2] - po[2]);
+    double v[3];
+    v3_sub(v, o, po);
+    double gap = v3_max_abs(v);
     if (!(gap <= reach))
         return 0;
-    /* Written out per component: every coherent ray pays for this, and
-     * GCC kept the loop with its index arithmetic (a third of the set-up
-     * of a ray that misses the mesh). */
-    double cross = max3_abs(d[1] * pd[2] - d[2] * pd[1], d[2] * pd[0] - d[0] * pd[2],
-                            d[0] * pd[1] - d[1] * pd[0]);
-    double span = max3_abs(o[0] - b->center[0], o[1] - b->center[1], o[2] - b->center[2]);
-    double norms = max3_abs(d[0], d[1], d[2]) * max3_abs(pd[0], pd[1], pd[2]);
-    double dot = d[0] * pd[0] + d[1] * pd[1] + d[2] * pd[2];
+    /* With vec3.h's straight-line helpers: every coherent ray pays for
+     * this, and a loop over k with (k + 1) % 3 indices stayed a loop (a
+     * third of the set-up of a ray that misses the mesh). */
+    v3_cross(v, d, pd);
+    double cross = v3_max_abs(v);
+    v3_sub(v, o, b->center);
+    double span = v3_max_abs(v);
+    double norms = v3_max_abs(d) * v3_max_abs(pd);
+    double dot = v3_dot(d, pd);
     return dot > 0.0
         && gap * norms + 1.7320508075688773 * cross * (span + b->extent) <= reach * norms;
 }
@@ -1150,9 +1146,7 @@ int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
      * smaller one, or without memory, every ray is traced at once in one
      * lane on the stack (the same records, without the overlap). A test
      * build defines ISECT_TEST_NO_LANES to take that path always. */
-    const isect_mesh *m = s->mesh;
-    int64_t bytes = m->tree.node_count * (int64_t)sizeof(bvh_node)
-                  + m->prim_count * (int64_t)sizeof(mesh_prim);
+    int64_t bytes = mesh_traversal_bytes(s->mesh);
     int count = n < BATCH_LANES ? (int)n : BATCH_LANES;
 #ifdef ISECT_TEST_NO_LANES
     lane *lanes = NULL;
