@@ -496,6 +496,12 @@ static uint8_t build_range(builder *b, int64_t begin, int64_t end, const aabbf *
 #define COLLAPSE_NODE 1.0
 #define COLLAPSE_ITEM 0.4
 
+/* The SAH cost of a leaf of the given items in a box of that half area. */
+static double leaf_cost(double area, int64_t items)
+{
+    return area * COLLAPSE_ITEM * (double)items;
+}
+
 /* The programme's table for one binary inner node. */
 typedef struct collapse_entry {
     float   cost[BVH_WIDTH];  /* cost[i - 1]: at most i children */
@@ -542,7 +548,7 @@ static void side_costs(const collapser *c, int32_t b, int side, double out[BVH_W
         return;
     }
     if (n->count[side] != 0)
-        leaf = box6_area(n->bounds[side]) * COLLAPSE_ITEM * n->count[side];
+        leaf = leaf_cost(box6_area(n->bounds[side]), n->count[side]);
     for (int i = 0; i < BVH_WIDTH - 1; i++)
         out[i] = leaf;
 }
@@ -587,7 +593,7 @@ static void collapse_cost(collapser *c, int32_t b, double area)
     double one = node;
     e->leaf = 0;
     if (e->items <= BVH_MAX_LEAF) {
-        double leaf = area * COLLAPSE_ITEM * e->items;
+        double leaf = leaf_cost(area, e->items);
         if (leaf < node) {
             one = leaf;
             e->leaf = 1;
