@@ -473,7 +473,6 @@ static void test_cube_exact(void)
     fx_free(&m);
 }
 
-/* The world-space mesh and the same mesh through a transform agree. */
 /* out = the 3x4 part of the row-major 4x4 mat applied to (p, w): w = 1 for
  * a point, 0 for a direction. */
 static void affine_apply(const double mat[16], const double p[3], double w, double out[3])
@@ -485,6 +484,7 @@ static void affine_apply(const double mat[16], const double p[3], double w, doub
     memcpy(out, r, sizeof r);
 }
 
+/* The world-space mesh and the same mesh through a transform agree. */
 static void test_transformed(void)
 {
     const double origin[3] = { 0.0, 0.0, 0.0 };
