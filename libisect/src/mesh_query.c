@@ -1028,17 +1028,18 @@ static int ray_follows(const batch *b, const isect_ray *r)
     /* Origins apart by more than the reach: no (most incoherent rays). */
     double v[3];
     v3_sub(v, o, po);
-    double gap = v3_max_abs(v);
+    double gap = v3_max_abs_finite(v);
     if (!(gap <= reach))
         return 0;
-    /* With vec3.h's straight-line helpers: every coherent ray pays for
-     * this, and a loop over k with (k + 1) % 3 indices stayed a loop (a
-     * third of the set-up of a ray that misses the mesh). */
+    /* Straight-line code (vec3.h): every coherent ray pays for this, and a
+     * loop over k with (k + 1) % 3 indices stayed a loop (a third of the
+     * set-up of a ray that misses the mesh). The first ray meets the NaN
+     * prev_org: gap is NaN and the answer no. */
     v3_cross(v, d, pd);
-    double cross = v3_max_abs(v);
+    double cross = v3_max_abs_finite(v);
     v3_sub(v, o, b->center);
-    double span = v3_max_abs(v);
-    double norms = v3_max_abs(d) * v3_max_abs(pd);
+    double span = v3_max_abs_finite(v);
+    double norms = v3_max_abs_finite(d) * v3_max_abs_finite(pd);
     double dot = v3_dot(d, pd);
     return dot > 0.0
         && gap * norms + 1.7320508075688773 * cross * (span + b->extent) <= reach * norms;

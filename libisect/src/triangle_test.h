@@ -107,9 +107,7 @@ static ALWAYS_INLINE int not_parallel(const ray_frame *f, const double dir[3], d
 {
     if (f->dir_len >= 0.0) /* the frame has |dir| (meshes, polygons): use it */
         return nd > eps * f->dir_len;
-    double m = fabs(dir[0]);
-    m = fabs(dir[1]) > m ? fabs(dir[1]) : m;
-    m = fabs(dir[2]) > m ? fabs(dir[2]) : m;
+    double m = v3_max_abs_finite(dir);
     if (nd > eps * (m * SQRT3_UP))
         return 1;
     return nd > eps * v3_norm(dir);

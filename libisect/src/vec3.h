@@ -58,6 +58,16 @@ static inline double v3_max_abs(const double a[3])
 {
     return v3_fmax_nan(fabs(a[0]), v3_fmax_nan(fabs(a[1]), fabs(a[2])));
 }
+/* max(|a0|, |a1|, |a2|) by two plain selects, for hot paths: a NaN a0 is
+ * returned (so an all-NaN a gives NaN), a NaN a1 or a2 is passed over;
+ * v3_max_abs, which ignores every NaN component, costs a select more per
+ * step. */
+static inline double v3_max_abs_finite(const double a[3])
+{
+    double m = fabs(a[0]);
+    m = fabs(a[1]) > m ? fabs(a[1]) : m;
+    return fabs(a[2]) > m ? fabs(a[2]) : m;
+}
 /* |a| without overflow or underflow for any finite a (hypot-style scaling). */
 static inline double v3_norm(const double a[3])
 {
