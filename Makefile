@@ -23,12 +23,12 @@ B := build
 WARN    := -std=c99 -Wall -Wextra -Wpedantic -Werror
 OPT     ?= -O2
 LIBCFLAGS := $(WARN) $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden \
-             -DISECT_BUILDING_LIBRARY -Ilibisect/include
+             -DISECT_BUILDING_LIBRARY -Ilibisect/include -Ilibisect/src
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 TESTCFLAGS := $(WARN) -O1 -g -Ilibisect/include -Itests/c
 
-SRCS    := $(sort $(wildcard libisect/src/*.c))
-HDRS    := $(wildcard libisect/src/*.h) libisect/include/isect.h
+SRCS    := $(sort $(wildcard libisect/src/*/*.c))
+HDRS    := $(wildcard libisect/src/*/*.h) libisect/include/isect.h
 OBJS    := $(SRCS:libisect/src/%.c=$(B)/obj/%.o)
 SAN_OBJS := $(SRCS:libisect/src/%.c=$(B)/san/obj/%.o)
 

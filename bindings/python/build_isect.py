@@ -7,7 +7,7 @@ in ``cffi_modules``.
 The sources are looked up in these places, first match wins:
 
 0. the directory named by the environment variable ``ISECT_LIBISECT_DIR``
-   (it must hold ``include/isect.h`` and ``src/*.c``), to build against
+   (it must hold ``include/isect.h`` and ``src/*/*.c``), to build against
    another copy of the library;
 1. ``_libisect/`` next to this file: the copy that ``setup.py sdist`` puts into
    a source distribution, so an sdist builds on its own;
@@ -28,7 +28,7 @@ HERE = Path(os.path.abspath(os.path.dirname(__file__)))
 
 
 def find_libisect() -> Path:
-    """Return the directory that holds ``include/isect.h`` and ``src/*.c``."""
+    """Return the directory that holds ``include/isect.h`` and ``src/*/*.c``."""
     override = os.environ.get("ISECT_LIBISECT_DIR")
     if override:
         candidates = [Path(override).resolve()]
@@ -98,10 +98,10 @@ def cdef_from_header(header: str) -> str:
 def make_ffibuilder() -> FFI:
     """Create the FFI builder: cdef from isect.h, sources from libisect."""
     root = find_libisect()
-    sources = sorted(str(p) for p in (root / "src").glob("*.c"))
+    sources = sorted(str(p) for p in (root / "src").rglob("*.c"))
     # Headers are listed so that a rebuild in a used tree (bindings/python/build
     # left by an earlier pip install) is triggered by a header change too.
-    headers = [root / "include" / "isect.h", *(root / "src").glob("*.h")]
+    headers = [root / "include" / "isect.h", *(root / "src").rglob("*.h")]
     builder = FFI()
     builder.cdef(cdef_from_header((root / "include" / "isect.h").read_text(encoding="utf-8")))
     builder.set_source(

@@ -3,7 +3,7 @@
  * the watertight test of triangle_test.h, and the per-face plane
  * (triangle_plane) that test and the mesh share.
  */
-#include "triangle_test.h"
+#include "prim/triangle_test.h"
 
 #include <string.h>
 
@@ -105,20 +105,3 @@ int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     return triangle_hit_framed(&f, ray, prm, s->data, s->data + 3, s->data + 6, &out[0]);
 }
 
-ISECT_API int isect_ray_triangle(const isect_ray *ray, const double a[3], const double b[3],
-                                 const double c[3], const isect_opts *opts,
-                                 isect_hit *hits, int cap)
-{
-    /* A NULL vertex leaves data NULL, which the dispatcher reports as
-     * ISECT_E_ARG in its usual order of checks. */
-    double abc[9];
-    const double *data = NULL;
-    if (a != NULL && b != NULL && c != NULL) {
-        memcpy(abc, a, 3 * sizeof *abc);
-        memcpy(abc + 3, b, 3 * sizeof *abc);
-        memcpy(abc + 6, c, 3 * sizeof *abc);
-        data = abc;
-    }
-    isect_shape s = { ISECT_TRIANGLE, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

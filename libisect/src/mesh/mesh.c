@@ -4,10 +4,10 @@
  * planes), the BVH, and the edge pass that decides whether the mesh is
  * closed (contains() needs that answer on every call, so it is made once).
  */
-#include "mesh.h"
+#include "mesh/mesh.h"
 
-#include "planar.h"
-#include "predicates.h"
+#include "prim/planar.h"
+#include "core/predicates.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -30,9 +30,9 @@
  * are those of the coefficients as given, while a, b, c, the discriminant
  * and the gradient are bounded numbers that cannot overflow.
  */
-#include "isect_internal.h"
-#include "quadratic.h"
-#include "vec3.h"
+#include "prim/prim.h"
+#include "core/quadratic.h"
+#include "core/vec3.h"
 
 #include <limits.h>
 
@@ -208,11 +208,3 @@ int quadric_contains(const isect_shape *s, const double p[3])
     return comp_value(&value) <= 0.0;
 }
 
-ISECT_API int isect_ray_quadric(const isect_ray *ray, const double q[10],
-                                const isect_opts *opts, isect_hit *hits, int cap)
-{
-    if (q == NULL)
-        return ISECT_E_ARG;
-    isect_shape s = { ISECT_QUADRIC, 0, 0, 0, q, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

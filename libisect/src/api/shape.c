@@ -6,8 +6,8 @@
  * [tmin, tmax] filter, back-face culling, ordering and the snprintf-style copy
  * exist once. The per-type work is the family table below.
  */
-#include "isect_internal.h"
-#include "mesh.h"
+#include "api/dispatch.h"
+#include "mesh/mesh.h"
 
 #include <limits.h>
 #include <string.h>
@@ -101,6 +101,28 @@ static int analytic_hit_first(const shape_family *f, const isect_shape *s,
     { X##_check, X##_hits, NULL, analytic_hits_all, analytic_hit_first,         \
       NULL, SURFACE_THIN, uses_n, uses_flags }
 
+/* The mesh's queries (mesh/mesh.h) under the family table's signatures. */
+static int64_t mesh_family_hits_all(const shape_family *f, const isect_shape *s,
+                                    const isect_ray *ray, const isect_params *prm,
+                                    isect_hit *hits, int64_t cap)
+{
+    (void)f;
+    return mesh_hits_all(s, ray, prm, hits, cap);
+}
+static int mesh_family_hit_first(const shape_family *f, const isect_shape *s,
+                                 const isect_ray *ray, const isect_params *prm, isect_hit *out)
+{
+    (void)f;
+    return mesh_hit_first(s, ray, prm, out);
+}
+static int64_t mesh_family_first_batch(const shape_family *f, const isect_shape *s,
+                                       const isect_ray *rays, int64_t n,
+                                       const isect_params *prm, isect_hit *closest)
+{
+    (void)f;
+    return mesh_hit_first_batch(s, rays, n, prm, closest);
+}
+
 /* Indexed by shape type; entry 0 is empty so a zeroed descriptor is rejected. */
 static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_PLANE]        = THIN_FAMILY(plane, 0, 0),
@@ -113,8 +135,9 @@ static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_CYLINDER_INF] = FAMILY(cylinder_inf, SURFACE_SOLID, 0, 0),
     [ISECT_ELLIPSOID]    = FAMILY(ellipsoid, SURFACE_SOLID, 0, 0),
     [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
-    [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_hits_all, mesh_hit_first,
-                             mesh_hit_first_batch, SURFACE_SOLID_IF_CLOSED, 0, 0 },
+    [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_family_hits_all,
+                             mesh_family_hit_first, mesh_family_first_batch,
+                             SURFACE_SOLID_IF_CLOSED, 0, 0 },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
@@ -155,17 +178,6 @@ const shape_family *query_prepare(const isect_shape *s, const isect_opts *opts,
 first_batch_fn shape_first_batch(const shape_family *f)
 {
     return f->first_batch;
-}
-
-int shape_object_ray(const isect_shape *s, const isect_ray *ray, isect_ray *tmp,
-                     const isect_ray **r)
-{
-    *r = ray;
-    if (s->xform == NULL)
-        return ISECT_OK;
-    xform_ray_unchecked(s->xform, ray, tmp);
-    *r = tmp;
-    return ray_check(tmp);
 }
 
 /* t is the same in both frames (dir is mapped, not renormalised), so range
@@ -225,12 +237,6 @@ ISECT_API int isect_intersect(const isect_shape *shape, const isect_ray *ray,
         return status;
     int64_t count = shape_ray_hits(f, shape, ray, &prm, hits, cap);
     return count > INT_MAX ? INT_MAX : (int)count;
-}
-
-int scalar_intersect(const isect_shape *s, const isect_ray *ray, const isect_opts *opts,
-                     isect_hit *hits, int cap)
-{
-    return isect_intersect(s, ray, opts, hits, cap);
 }
 
 ISECT_API int isect_contains(const isect_shape *shape, const double p[3])

@@ -8,7 +8,7 @@
  * nonoverlapping expansion whose largest component carries the sign.
  * TwoSum is Knuth's, TwoProduct uses one fma (exact product error).
  */
-#include "predicates.h"
+#include "core/predicates.h"
 
 #include <float.h>
 #include <math.h>

@@ -3,9 +3,9 @@
  * range the API promises. Kernels report every intersection of the ray's
  * whole line; the range filter, back-face culling and ordering live here.
  */
-#include "isect_internal.h"
+#include "prim/prim.h"
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 #include <string.h>
 

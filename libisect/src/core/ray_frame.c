@@ -1,9 +1,9 @@
 /*
  * ray_frame.c — building the sheared frame of a ray (see ray_frame.h).
  */
-#include "ray_frame.h"
+#include "core/ray_frame.h"
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 void ray_frame_shear_no_len(const isect_ray *ray, ray_frame *f)
 {

@@ -3,7 +3,7 @@
  * options, rays, and runs of numbers that must be finite. Written once here
  * so that scalar, dispatch and batch calls reject exactly the same inputs.
  */
-#include "isect_internal.h"
+#include "core/core.h"
 
 #include <string.h>
 

@@ -10,7 +10,7 @@
  * the bins and no other sweep is needed. A range becomes a leaf when it is
  * small enough and no split is cheaper than testing every item.
  */
-#include "bvh.h"
+#include "mesh/bvh.h"
 
 #include "isect.h"
 

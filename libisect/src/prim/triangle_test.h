@@ -11,9 +11,9 @@
 #ifndef ISECT_TRIANGLE_TEST_H
 #define ISECT_TRIANGLE_TEST_H
 
-#include "planar.h"
-#include "predicates.h"
-#include "vec3.h"
+#include "prim/planar.h"
+#include "core/predicates.h"
+#include "core/vec3.h"
 
 #include <float.h>
 

@@ -14,8 +14,8 @@
 #ifndef ISECT_PLANAR_H
 #define ISECT_PLANAR_H
 
-#include "isect_internal.h"
-#include "ray_frame.h"
+#include "prim/prim.h"
+#include "core/ray_frame.h"
 
 /* Triangle a, b, c: 1 and *out (uv = barycentric weights of b and c, t
  * interpolated from the sheared z of the vertices) or 0. f is the frame of

@@ -4,9 +4,9 @@
  * the sheared frame's origin; the public isect_ray_polygon,
  * isect_polygon_normal and isect_plane_from_points.
  */
-#include "planar.h"
-#include "predicates.h"
-#include "vec3.h"
+#include "prim/planar.h"
+#include "core/predicates.h"
+#include "core/vec3.h"
 
 #include <stddef.h>
 
@@ -179,13 +179,6 @@ int polygon_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
     ray_frame f;
     ray_frame_shear(ray, &f);
     return polygon_hit_framed(&f, ray, prm, s->data, NULL, s->n, s->flags, &out[0]);
-}
-
-ISECT_API int isect_ray_polygon(const isect_ray *ray, const double *v, int n, int rule,
-                                const isect_opts *opts, isect_hit *hits, int cap)
-{
-    isect_shape s = { ISECT_POLYGON, n, rule, 0, v, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
 }
 
 /* Shared checks of the two helpers: ISECT_OK, or the error to return. */

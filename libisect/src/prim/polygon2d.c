@@ -2,8 +2,8 @@
  * polygon2d.c — 2D point in polygon and winding number, single and batch,
  * all through one loop over winding_edge (exact, half-open rule).
  */
-#include "isect_internal.h"
-#include "predicates.h"
+#include "prim/prim.h"
+#include "core/predicates.h"
 
 #include <stddef.h>
 

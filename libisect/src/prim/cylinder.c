@@ -39,9 +39,9 @@
  * overflow. Line parameters are compared in the scaled units (a common
  * power-of-two factor, which keeps their order) and converted once.
  */
-#include "isect_internal.h"
-#include "quadratic.h"
-#include "vec3.h"
+#include "prim/prim.h"
+#include "core/quadratic.h"
+#include "core/vec3.h"
 
 /* |m|^2 - r^2 |a|^2, compensated: its sign is that of (distance to the
  * axis) - r for m = (x - p0) x a, without rounding r|a| first. Each r a_k is
@@ -283,19 +283,6 @@ int cylinder_contains(const isect_shape *s, const double p[3])
     return frame_contains(&fr, 1);
 }
 
-ISECT_API int isect_ray_cylinder(const isect_ray *ray, const double p0[3], const double p1[3],
-                                 double r, int capped, const isect_opts *opts,
-                                 isect_hit *hits, int cap)
-{
-    if (p0 == NULL || p1 == NULL)
-        return ISECT_E_ARG;
-    double data[7] = { p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], r };
-    /* capped goes through as the flags word, so cylinder_check rejects
-     * anything but 0 and ISECT_CAPPED (1). */
-    isect_shape s = { ISECT_CYLINDER, 0, (int32_t)capped, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}
-
 /* ----------------------------------------------------- infinite cylinder */
 
 int cylinder_inf_check(const isect_shape *s)
@@ -325,13 +312,3 @@ int cylinder_inf_contains(const isect_shape *s, const double p[3])
     return frame_contains(&fr, 0);
 }
 
-ISECT_API int isect_ray_cylinder_inf(const isect_ray *ray, const double p[3],
-                                     const double axis[3], double r, const isect_opts *opts,
-                                     isect_hit *hits, int cap)
-{
-    if (p == NULL || axis == NULL)
-        return ISECT_E_ARG;
-    double data[7] = { p[0], p[1], p[2], axis[0], axis[1], axis[2], r };
-    isect_shape s = { ISECT_CYLINDER_INF, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

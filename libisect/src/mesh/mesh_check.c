@@ -14,9 +14,9 @@
  * cancel the mesh's position away) and summed with Neumaier's compensated
  * summation.
  */
-#include "mesh.h"
+#include "mesh/mesh.h"
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -85,13 +85,13 @@
  * the surface are inside (solids are closed sets, as for the analytic
  * shapes): see mesh_contains.
  */
-#include "mesh.h"
+#include "mesh/mesh.h"
 
-#include "planar.h"
-#include "predicates.h"
-#include "ray_frame.h"
-#include "triangle_test.h"
-#include "vec3.h"
+#include "prim/planar.h"
+#include "core/predicates.h"
+#include "core/ray_frame.h"
+#include "prim/triangle_test.h"
+#include "core/vec3.h"
 
 #include <float.h>
 #include <stdlib.h>
@@ -892,10 +892,9 @@ static void query_run(query *q, int mode, int avx2)
         walk(q, &w, mode, 0, 0, 0);
 }
 
-int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+int64_t mesh_hits_all(const isect_shape *s, const isect_ray *ray,
                       const isect_params *prm, isect_hit *hits, int64_t cap)
 {
-    (void)f;
     query q;
     query_init(&q, s->mesh, ray, prm);
     if (!(ray->tmin <= ray->tmax))
@@ -914,10 +913,9 @@ int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_r
     return q.count;
 }
 
-int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
+int mesh_hit_first(const isect_shape *s, const isect_ray *ray,
                    const isect_params *prm, isect_hit *out)
 {
-    (void)f;
     query q;
     query_init(&q, s->mesh, ray, prm);
     if (!(ray->tmin <= ray->tmax))
@@ -954,8 +952,8 @@ int mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray 
  * Either way each ray runs exactly the steps mesh_hit_first runs
  * (query_init, the tmin > tmax miss, query_run's steps, at once or one at a
  * time; no traversal state is shared between rays, ray_follows only picks
- * which way), and each ray passes ray_check, shape_object_ray,
- * batch_record and shape_hits_to_world as batch.c's per-ray loop over
+ * which way), and each ray passes ray_check, xform_object_ray,
+ * batch_record and xform_hits_to_world as batch.c's per-ray loop over
  * shape_ray_first does, so every record and the returned count are bit for
  * bit that loop's. Rays finish out of order; each writes only its own
  * record.
@@ -1052,7 +1050,7 @@ static int64_t lane_finish(const lane *l, const batch *b)
     int found = l->q.found;
     if (found) {
         *out = l->q.best;
-        shape_hits_to_world(b->s, out, 1);
+        xform_hits_to_world(b->s->xform, out, 1);
     }
     return batch_record(out, found);
 }
@@ -1068,7 +1066,7 @@ static int lane_start(lane *l, batch *b)
         const isect_ray *r = &b->rays[i];
         int status = ray_check(r);
         if (status == ISECT_OK)
-            status = shape_object_ray(b->s, r, &l->object, &r);
+            status = xform_object_ray(b->s->xform, r, &l->object, &r);
         if (status != ISECT_OK) {
             batch_record(&b->closest[i], status);
             continue;
@@ -1124,11 +1122,10 @@ MESH_TARGET_AVX2 static int64_t batch_run_avx2(batch *b, lane *lanes, int count)
 }
 #endif
 
-int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
+int64_t mesh_hit_first_batch(const isect_shape *s,
                              const isect_ray *rays, int64_t n, const isect_params *prm,
                              isect_hit *closest)
 {
-    (void)f;
     batch b;
     b.s = s;
     b.rays = rays;

@@ -14,8 +14,8 @@
  * coordinates near DBL_MAX) is not a point of the ray and is not reported,
  * so no inf or NaN reaches the output. t = 0 is reported as +0.0.
  */
-#include "isect_internal.h"
-#include "vec3.h"
+#include "prim/prim.h"
+#include "core/vec3.h"
 
 /* v' = v * 2^-e with e the exponent of max|v_i| (frexp), so max|v'_i| is in
  * [0.5, 1); returns e. A zero vector stays zero (e = 0). */
@@ -58,12 +58,3 @@ int plane_hits(const isect_shape *s, const isect_ray *ray, const isect_params *p
     return 1;
 }
 
-ISECT_API int isect_ray_plane(const isect_ray *ray, const double n[3], double d,
-                              const isect_opts *opts, isect_hit *hits, int cap)
-{
-    if (n == NULL)
-        return ISECT_E_ARG;
-    double data[4] = { n[0], n[1], n[2], d };
-    isect_shape s = { ISECT_PLANE, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

@@ -5,9 +5,9 @@
  * mapped as a vector and never renormalised, so t means the same in both
  * spaces and hits of transformed shapes sort and clip exactly like the rest.
  */
-#include "isect_internal.h"
+#include "core/core.h"
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 #include <string.h>
 

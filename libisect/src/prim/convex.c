@@ -34,8 +34,8 @@
  * the scaled dir (a common power-of-two factor, which keeps their order) and
  * converted once at the end. A t beyond the double range is not reported.
  */
-#include "isect_internal.h"
-#include "vec3.h"
+#include "prim/prim.h"
+#include "core/vec3.h"
 
 /* v' = v * 2^-e with e the exponent of max|v_i| (frexp), so max|v'_i| is in
  * [0.5, 1); returns e. A zero vector stays zero (e = 0). */
@@ -142,9 +142,3 @@ int convex_contains(const isect_shape *s, const double p[3])
     return 1;
 }
 
-ISECT_API int isect_ray_convex(const isect_ray *ray, const double *planes, int m,
-                               const isect_opts *opts, isect_hit *hits, int cap)
-{
-    isect_shape s = { ISECT_CONVEX, m, 0, 0, planes, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

@@ -36,7 +36,7 @@
  *
  * Flat boxes (lo == hi on an axis) are degenerate: no hits, no points inside.
  */
-#include "isect_internal.h"
+#include "prim/prim.h"
 
 #include <float.h>
 
@@ -168,12 +168,3 @@ int aabb_contains(const isect_shape *s, const double p[3])
     return inside;
 }
 
-ISECT_API int isect_ray_aabb(const isect_ray *ray, const double lo[3], const double hi[3],
-                             const isect_opts *opts, isect_hit *hits, int cap)
-{
-    if (lo == NULL || hi == NULL)
-        return ISECT_E_ARG;
-    double data[6] = { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] };
-    isect_shape s = { ISECT_AABB, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

@@ -24,9 +24,9 @@
  * (ratio above ~2^1022) cannot be scaled to a unit sphere and is treated as
  * degenerate too.
  */
-#include "isect_internal.h"
-#include "quadratic.h"
-#include "vec3.h"
+#include "prim/prim.h"
+#include "core/quadratic.h"
+#include "core/vec3.h"
 
 /* One crossing in the ray's units: t, the world normal, and the point
  * placed on the surface from the centre. */
@@ -106,16 +106,6 @@ int sphere_contains(const isect_shape *s, const double p[3])
     return sumsq_minus_sq(f, pow2_scale(r, -e)) <= 0.0;
 }
 
-ISECT_API int isect_ray_sphere(const isect_ray *ray, const double c[3], double r,
-                               const isect_opts *opts, isect_hit *hits, int cap)
-{
-    if (c == NULL)
-        return ISECT_E_ARG;
-    double data[4] = { c[0], c[1], c[2], r };
-    isect_shape s = { ISECT_SPHERE, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}
-
 /* ------------------------------------------------------------- ellipsoid */
 
 /*
@@ -193,12 +183,3 @@ int ellipsoid_contains(const isect_shape *s, const double p[3])
     return sumsq_minus_sq(fr.y0, 1.0) <= 0.0;
 }
 
-ISECT_API int isect_ray_ellipsoid(const isect_ray *ray, const double c[3], const double radii[3],
-                                  const isect_opts *opts, isect_hit *hits, int cap)
-{
-    if (c == NULL || radii == NULL)
-        return ISECT_E_ARG;
-    double data[6] = { c[0], c[1], c[2], radii[0], radii[1], radii[2] };
-    isect_shape s = { ISECT_ELLIPSOID, 0, 0, 0, data, NULL, NULL };
-    return scalar_intersect(&s, ray, opts, hits, cap);
-}

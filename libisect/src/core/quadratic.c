@@ -2,10 +2,10 @@
  * quadratic.c — cancellation-free roots for the quadric family; see
  * quadratic.h for what each routine promises.
  */
-#include "quadratic.h"
+#include "core/quadratic.h"
 
-#include "predicates.h"
-#include "vec3.h"
+#include "core/predicates.h"
+#include "core/vec3.h"
 
 #include <math.h>
 

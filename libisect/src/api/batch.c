@@ -8,7 +8,7 @@
  * family may run isect_intersect_batch's rays its own way (the mesh keeps
  * several traversals in flight) but must write exactly these records.
  */
-#include "isect_internal.h"
+#include "api/dispatch.h"
 
 #include <string.h>
 

@@ -22,7 +22,7 @@
 #ifndef ISECT_QUADRATIC_H
 #define ISECT_QUADRATIC_H
 
-#include "predicates.h"
+#include "core/predicates.h"
 
 #include "isect.h"
 

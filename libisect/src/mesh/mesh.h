@@ -1,8 +1,8 @@
 /*
  * mesh.h — the mesh object and what its files share: mesh.c (creation,
  * validation, per-face data), mesh_query.c (ray queries and containment over
- * the BVH), mesh_check.c (topology report), and the dispatcher entries the
- * family table in shape.c calls.
+ * the BVH), mesh_check.c (topology report), and the queries the dispatcher
+ * (api/shape.c) calls.
  *
  * Faces. A face of 3 vertices is a triangle, tested by triangle_hit_framed;
  * a face of more is a planar polygon, tested by polygon_hit_plane_framed
@@ -16,8 +16,8 @@
 #ifndef ISECT_MESH_H
 #define ISECT_MESH_H
 
-#include "bvh.h"
-#include "isect_internal.h"
+#include "mesh/bvh.h"
+#include "prim/prim.h"
 
 /* One face in BVH leaf order, with what the hot loop needs inline. 104
  * bytes. */
@@ -85,10 +85,10 @@ int mesh_edge_uses(const isect_mesh *m, mesh_edge_use **uses, int64_t *count);
  * object space; [tmin, tmax], ISECT_CULL_BACK (faces are thin surfaces) and
  * ISECT_ANY_HIT are applied here; hits are sorted by (t, face index). */
 int     mesh_check(const isect_shape *s);
-int64_t mesh_hits_all(const shape_family *f, const isect_shape *s, const isect_ray *ray,
-                      const isect_params *prm, isect_hit *hits, int64_t cap);
-int     mesh_hit_first(const shape_family *f, const isect_shape *s, const isect_ray *ray,
-                       const isect_params *prm, isect_hit *out);
+int64_t mesh_hits_all(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                      isect_hit *hits, int64_t cap);
+int     mesh_hit_first(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                       isect_hit *out);
 int     mesh_contains(const isect_shape *s, const double p[3]);
 /* The family's first_batch (isect_intersect_batch for a mesh): the closest
  * (any, under ISECT_ANY_HIT) hit of each world-space ray into closest[i],
@@ -96,9 +96,8 @@ int     mesh_contains(const isect_shape *s, const double p[3]);
  * returns the number of rays hit. Bit for bit the per-ray loop over
  * mesh_hit_first, several traversals interleaved to overlap their cache
  * misses. */
-int64_t mesh_hit_first_batch(const shape_family *f, const isect_shape *s,
-                             const isect_ray *rays, int64_t n, const isect_params *prm,
-                             isect_hit *closest);
+int64_t mesh_hit_first_batch(const isect_shape *s, const isect_ray *rays, int64_t n,
+                             const isect_params *prm, isect_hit *closest);
 /* 1 when the mesh is closed (contains applies). */
 int     mesh_is_closed(const isect_mesh *m);
 

@@ -2,7 +2,7 @@
  * version.c — what the built library says about itself, and the text of its
  * status codes.
  */
-#include "isect_internal.h"
+#include "api/dispatch.h"
 
 /* Compile-time checks of the layouts isect.h documents (C99 has no
  * static_assert: a negative array size stops the build). */

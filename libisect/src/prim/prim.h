@@ -1,0 +1,87 @@
+/*
+ * prim.h — what the primitive files provide and share.
+ *
+ * Each family of primitives lives in its own file and provides, per shape
+ * type, three functions over the isect_shape descriptor:
+ *
+ *   int  X_check(const isect_shape *s);
+ *        Validate s->data / s->n / s->flags for this type (the dispatcher
+ *        has already checked type, reserved, data != NULL and that n/flags
+ *        are 0 for types that do not use them). Returns ISECT_OK or an error:
+ *        ISECT_E_NONFINITE for NaN/Inf, ISECT_E_ARG for a negative radius,
+ *        bad count, bad rule or flag. Degenerate geometry is ISECT_OK.
+ *
+ *   int  X_hits(const isect_shape *s, const isect_ray *ray,
+ *               const isect_params *prm, isect_hit out[ISECT_MAX_HITS]);
+ *        All intersections of the ray's whole LINE with the surface (any t;
+ *        the dispatcher keeps tmin <= t <= tmax, applies ISECT_CULL_BACK and
+ *        sorts by (t, prim)). The ray is valid (finite org/dir, dir != 0) and
+ *        in object space. Each hit has t, point, unit normal, uv, prim, kind
+ *        filled (hit_set() does the common part). Returns the count
+ *        (0..ISECT_MAX_HITS). Must never fail.
+ *
+ *   int  X_contains(const isect_shape *s, const double p[3]);
+ *        Solids only: 1 inside (closed set), 0 outside; p is finite and in
+ *        object space. NULL in the table for thin surfaces.
+ *
+ * The public isect_ray_X functions (api/scalar.c) build a descriptor and run
+ * it through the dispatcher, so validation, filtering, sorting and the
+ * snprintf-style copy are written once.
+ */
+#ifndef ISECT_PRIM_H
+#define ISECT_PRIM_H
+
+#include "core/core.h"
+
+/* The most hits an analytic primitive can have along one line. */
+#define ISECT_MAX_HITS 4
+
+/* Fill h: t, point = org + t*dir, normal (copied; must be unit), uv = 0,
+ * prim, kind. */
+void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3],
+             int32_t prim, int32_t kind);
+
+/* ENTER/EXIT from the sign of dir.normal (normal outward or front-facing). */
+int32_t hit_kind_from_normal(const double dir[3], const double normal[3]);
+
+/* A batch record for a ray with no hit (ISECT_MISS: t = +inf) or a bad ray
+ * (ISECT_INVALID: t = NaN); prim -1, everything else 0. */
+void hit_set_miss(isect_hit *h, int32_t kind);
+
+/* Keep the hits with tmin <= t <= tmax (and, for a thin surface under
+ * ISECT_CULL_BACK, drop EXIT hits), sort by (t, prim); returns how many are
+ * kept, compacted to the front of h. */
+int hits_finish(isect_hit *h, int count, const isect_ray *ray, const isect_params *prm,
+                int thin);
+
+/* The batch record of a ray whose query returned found (a first-hit
+ * query's result, or ray_check's status): 1 for a hit (the record already
+ * written), else the record becomes ISECT_MISS (0) or ISECT_INVALID (< 0)
+ * and 0. */
+static inline int64_t batch_record(isect_hit *rec, int found)
+{
+    if (found > 0)
+        return 1;
+    hit_set_miss(rec, found < 0 ? ISECT_INVALID : ISECT_MISS);
+    return 0;
+}
+
+/* The shape families. */
+#define ISECT_DECLARE_SHAPE(X)                                                   \
+    int X##_check(const isect_shape *s);                                         \
+    int X##_hits(const isect_shape *s, const isect_ray *ray,                     \
+                 const isect_params *prm, isect_hit out[ISECT_MAX_HITS]);        \
+    int X##_contains(const isect_shape *s, const double p[3]);
+
+ISECT_DECLARE_SHAPE(plane)        /* plane.c    (contains: unused, thin)     */
+ISECT_DECLARE_SHAPE(sphere)       /* sphere.c                                */
+ISECT_DECLARE_SHAPE(ellipsoid)    /* sphere.c: the unit sphere, scaled       */
+ISECT_DECLARE_SHAPE(aabb)         /* box.c                                   */
+ISECT_DECLARE_SHAPE(triangle)     /* triangle.c (contains: unused, thin)     */
+ISECT_DECLARE_SHAPE(polygon)      /* polygon.c  (contains: unused, thin)     */
+ISECT_DECLARE_SHAPE(convex)       /* convex.c                                */
+ISECT_DECLARE_SHAPE(cylinder)     /* cylinder.c (contains: capped only)      */
+ISECT_DECLARE_SHAPE(cylinder_inf) /* cylinder.c                              */
+ISECT_DECLARE_SHAPE(quadric)      /* quadric.c                               */
+
+#endif /* ISECT_PRIM_H */
