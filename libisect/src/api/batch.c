@@ -9,6 +9,7 @@
  * several traversals in flight) but must write exactly these records.
  */
 #include "api/dispatch.h"
+#include "api/lanes.h"
 
 #include <string.h>
 
@@ -33,6 +34,10 @@ ISECT_API int64_t isect_intersect_batch(const isect_shape *shape, const isect_ra
     first_batch_fn first_batch = shape_first_batch(f);
     if (first_batch != NULL)
         return first_batch(f, shape, rays, n, &prm, closest);
+    /* The analytic shapes with a fast kernel run it on several rays at once. */
+    lanes_batch_fn lanes = lanes_batch_select(shape->type);
+    if (lanes != NULL)
+        return lanes(f, shape, rays, n, &prm, closest);
     int64_t hit_count = 0;
     for (int64_t i = 0; i < n; i++) {
         int found = ray_check(&rays[i]);

@@ -84,4 +84,9 @@ ISECT_DECLARE_SHAPE(cylinder)     /* cylinder.c (contains: capped only)      */
 ISECT_DECLARE_SHAPE(cylinder_inf) /* cylinder.c                              */
 ISECT_DECLARE_SHAPE(quadric)      /* quadric.c                               */
 
+/* Exact side tests (sign of the implicit function: -1 inside, 0 on the
+ * surface, +1 outside), for containment and for spawning rays off the
+ * surface. */
+int sphere_side(const double *data, const double p[3]);
+
 #endif /* ISECT_PRIM_H */

@@ -25,6 +25,8 @@
  * degenerate too.
  */
 #include "prim/prim.h"
+#include "prim/sphere_lanes.h"
+#include "core/expansion.h"
 #include "core/quadratic.h"
 #include "core/vec3.h"
 
@@ -67,43 +69,229 @@ int sphere_check(const isect_shape *s)
     return s->data[3] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
+/*
+ * The exact path, for the rays the fast kernel (sphere_lanes.h) cannot
+ * certify. The same formulas, with D, B, C and G = B^2 - D C formed as
+ * exact expansions (expansion.h) after scaling positions and the direction
+ * by powers of two (exact: the largest position coordinate and the largest
+ * direction component near 1), so that
+ *  - the tangency rule |G| <= eps r^2 D and the sign of G are decided
+ *    exactly;
+ *  - each crossing's interval decision is exact: t_lo >= tau iff Q(tau) >= 0
+ *    and tau <= t_mid, t_hi >= tau iff Q(tau) <= 0 or tau <= t_mid (and the
+ *    mirror images for tmax), Q(tau) = D tau^2 + 2 B tau + C and
+ *    tau <= t_mid = -B/D iff B + D tau <= 0, all signs of expansions;
+ *  - the roots, normals and points come from the kernel's own formulas on
+ *    the values of D, B, C, G, m rounded from the exact ones (error 2u^2),
+ *    hence within ~1 ulp; C == 0 (the origin on the sphere) gives t = 0
+ *    exactly.
+ * Parameters are compared in the scaled units (t' = t 2^-t_shift; tmin and
+ * tmax scaled alike, exactly unless they become subnormal).
+ */
+static int sphere_exact(const double *data, const isect_ray *ray, double eps,
+                        isect_hit out[ISECT_MAX_HITS])
+{
+    const double *c = data;
+    double r = data[3];
+    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c))));
+    int e_dir = pow2_exponent(max_abs3(ray->dir));
+    int t_shift = e - e_dir;
+    double scaled[4], o_s[3], d_s[3];
+    scale3(scaled, c, e);
+    scaled[3] = pow2_scale(r, -e);
+    scale3(o_s, ray->org, e);
+    scale3(d_s, ray->dir, e_dir);
+    if (!(scaled[3] > 0.0))
+        return 0; /* below 2^-1074 of the distances: nothing to hit */
+
+    /* f = o - c exactly, and D, B, C, G = B^2 - D C, eps r^2 D. */
+    xp f[3], dd, b, cc, g, thr, tmp, tmp2;
+    double fh[3], fl[3];
+    xp_set(&dd, 0.0);
+    xp_set(&b, 0.0);
+    xp_set(&cc, 0.0);
+    for (int k = 0; k < 3; k++) {
+        vdd fk = two_sum(o_s[k], -scaled[k]);
+        fh[k] = fk.hi;
+        fl[k] = fk.lo;
+        xp_set2(&f[k], fh[k], fl[k]);
+        xp_set(&tmp, d_s[k]);
+        xp_scale(&tmp, &tmp, d_s[k]);
+        xp_add(&dd, &dd, &tmp);
+        xp_scale(&tmp, &f[k], d_s[k]);
+        xp_add(&b, &b, &tmp);
+        xp_mul(&tmp, &f[k], &f[k]);
+        xp_add(&cc, &cc, &tmp);
+    }
+    xp_set(&tmp, scaled[3]);
+    xp_scale(&tmp, &tmp, scaled[3]);
+    xp_sub(&cc, &cc, &tmp);
+    xp_mul(&thr, &tmp, &dd);
+    xp_scale(&thr, &thr, eps);
+    xp_mul(&g, &b, &b);
+    xp_mul(&tmp2, &dd, &cc);
+    xp_sub(&g, &g, &tmp2);
+
+    xp_add(&tmp, &g, &thr);
+    xp_sub(&tmp2, &g, &thr);
+    int touch = xp_sign(&tmp) >= 0 && xp_sign(&tmp2) <= 0;
+    if (!touch && xp_sign(&g) <= 0)
+        return 0;
+
+    /* Interval decisions. */
+    double bound[2] = { ray->tmin, ray->tmax };
+    int lo_ok[2], hi_ok[2], mid_ok[2]; /* [0]: >= tmin, [1]: <= tmax */
+    for (int side = 0; side < 2; side++) {
+        double tau = bound[side];
+        if (isinf(tau)) {
+            int all = side == 0 ? tau < 0.0 : tau > 0.0;
+            lo_ok[side] = hi_ok[side] = mid_ok[side] = all;
+            continue;
+        }
+        double tau_s = pow2_scale(tau, -t_shift);
+        xp q_tau, m_tau; /* Q(tau), B + D tau */
+        xp_scale(&m_tau, &dd, tau_s);
+        xp_add(&m_tau, &m_tau, &b);
+        xp_add(&q_tau, &m_tau, &b);
+        xp_scale(&q_tau, &q_tau, tau_s);
+        xp_add(&q_tau, &q_tau, &cc);
+        int sq = xp_sign(&q_tau), sm = xp_sign(&m_tau);
+        if (side == 0) {
+            lo_ok[0] = sq >= 0 && sm <= 0;
+            hi_ok[0] = sq <= 0 || sm <= 0;
+            mid_ok[0] = sm <= 0;
+        } else {
+            lo_ok[1] = sq <= 0 || sm >= 0;
+            hi_ok[1] = sq >= 0 && sm >= 0;
+            mid_ok[1] = sm >= 0;
+        }
+    }
+
+    /* The kernel's quantities, rounded from the exact ones. */
+    vdd dv, bv, cv, gv;
+    xp_dd(&dd, &dv.hi, &dv.lo);
+    xp_dd(&b, &bv.hi, &bv.lo);
+    xp_dd(&cc, &cv.hi, &cv.lo);
+    xp_dd(&g, &gv.hi, &gv.lo);
+    sphere_lanes sl;
+    lane_ray lr;
+    isect_ray scaled_ray = { { o_s[0], o_s[1], o_s[2] }, { d_s[0], d_s[1], d_s[2] },
+                             pow2_scale(ray->tmin, -t_shift), pow2_scale(ray->tmax, -t_shift) };
+    lane_ray_from(&lr, &scaled_ray);
+    for (int k = 0; k < 3; k++) { /* l = (d x m)/D, m = f x d, exactly to dd */
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        xp m_i, m_j;
+        xp_scale(&m_i, &f[j], d_s[k]);   /* m_i = f_j d_k - f_k d_j */
+        xp_scale(&tmp, &f[k], d_s[j]);
+        xp_sub(&m_i, &m_i, &tmp);
+        xp_scale(&m_j, &f[k], d_s[i]);   /* m_j = f_k d_i - f_i d_k */
+        xp_scale(&tmp, &f[i], d_s[k]);
+        xp_sub(&m_j, &m_j, &tmp);
+        xp_scale(&tmp, &m_j, d_s[i]);    /* d_i m_j - d_j m_i */
+        xp_scale(&tmp2, &m_i, d_s[j]);
+        xp_sub(&tmp, &tmp, &tmp2);
+        vdd num;
+        xp_dd(&tmp, &num.hi, &num.lo);
+        sl.l[k] = dd_div(num, dv);
+    }
+    sl.touch = touch;
+    sl.slow = 0;
+    int count = 0;
+    if (touch) {
+        vdd minus_b = { -bv.hi, -bv.lo };
+        sl.t[0] = dd_div(minus_b, dv);
+        sl.t[1] = sl.t[0];
+        sl.w = 0.0;
+        sl.in[0] = mid_ok[0] && mid_ok[1];
+        sl.in[1] = 0;
+    } else {
+        double s = sqrt(gv.hi);
+        vdd s2 = two_prod(s, s);
+        vdd sqrt_g = { s, (((gv.hi - s2.hi) - s2.lo) + gv.lo) / (s + s) };
+        double sigma = xp_sign(&b) < 0 ? -1.0 : 1.0;
+        vdd q = two_sum(bv.hi, sigma * sqrt_g.hi);
+        q.hi = -q.hi;
+        q.lo = -(q.lo + (bv.lo + sigma * sqrt_g.lo));
+        q = dd_renorm(q);
+        double t1 = dd_div(q, dv), t2 = dd_div(cv, q);
+        sl.t[0] = sigma > 0.0 ? t1 : t2;
+        sl.t[1] = sigma > 0.0 ? t2 : t1;
+        sl.t[0] = fmin(sl.t[0], sl.t[1]);
+        sl.w = dd_div(sqrt_g, dv);
+        sl.in[0] = lo_ok[0] && lo_ok[1];
+        sl.in[1] = hi_ok[0] && hi_ok[1];
+    }
+    for (int i = 0; i < 2; i++)
+        sl.t[i] = lane_clamp_t(sl.t[i], &lr) + 0.0;
+    sphere_prep sp;
+    sphere_prepare(scaled, eps, &sp);
+    for (int i = 0; i < 2; i++) {
+        if (!sl.in[i])
+            continue;
+        lane_hit h;
+        sphere_lanes_record(&sp, &lr, &sl, i, &h);
+        isect_hit *hit = &out[count];
+        lane_hit_store(&h, 0, hit);
+        hit->t = pow2_scale(hit->t, t_shift) + 0.0;
+        for (int k = 0; k < 3; k++)
+            hit->point[k] = pow2_scale(hit->point[k], e);
+        if (isfinite(hit->t)) /* beyond the double range: not reported */
+            count++;
+    }
+    return count;
+}
+
 int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                 isect_hit out[ISECT_MAX_HITS])
 {
-    const double *c = s->data;
-    double r = s->data[3];
-    if (r == 0.0)
+    if (s->data[3] == 0.0)
         return 0;
-    /* org - c without overflow: both scaled by the power of two of the
-     * largest coordinate first (exact), t scaled back at the end. */
-    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c))));
-    double f[3];
-    for (int k = 0; k < 3; k++) /* the same operations as scale3 + v3_sub */
-        f[k] = pow2_scale(ray->org[k], -e) - pow2_scale(c[k], -e);
-
-    line_sphere ls;
-    line_sphere_roots(f, ray->dir, pow2_scale(r, -e), prm->eps, &ls);
-    crossing cr[2];
-    for (int i = 0; i < ls.count; i++) {
-        cr[i].t = pow2_scale(ls.t[i], e);
-        v3_copy(cr[i].normal, ls.normal[i]);
-        v3_madd(cr[i].snapped, c, r, ls.normal[i]);
+    sphere_prep sp;
+    sphere_prepare(s->data, prm->eps, &sp);
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (!sphere_lanes_screen(&sp, &lr))
+        return 0;
+    sphere_lanes sl;
+    sphere_lanes_solve(&sp, &lr, &sl);
+    if (sl.slow)
+        return sphere_exact(s->data, ray, prm->eps, out);
+    int count = 0;
+    for (int i = 0; i < 2; i++) {
+        if (!sl.in[i])
+            continue;
+        lane_hit h;
+        sphere_lanes_record(&sp, &lr, &sl, i, &h);
+        lane_hit_store(&h, 0, &out[count++]);
     }
-    return emit_crossings(&ls, cr, max_abs3(c) + r, ray, out);
+    return count;
+}
+
+/* The exact side of p: the sign of |p - c|^2 - r^2 (f = p - c exact as two
+ * parts, every product exact). */
+int sphere_side(const double *data, const double p[3])
+{
+    int e = pow2_exponent(fmax_nan(data[3], fmax_nan(max_abs3(p), max_abs3(data))));
+    xp sum, tmp, f;
+    xp_set(&sum, 0.0);
+    for (int k = 0; k < 3; k++) {
+        vdd fk = two_sum(pow2_scale(p[k], -e), -pow2_scale(data[k], -e));
+        xp_set2(&f, fk.hi, fk.lo);
+        xp_mul(&tmp, &f, &f);
+        xp_add(&sum, &sum, &tmp);
+    }
+    double r_s = pow2_scale(data[3], -e);
+    xp_set(&tmp, r_s);
+    xp_scale(&tmp, &tmp, -r_s);
+    xp_add(&sum, &sum, &tmp);
+    return xp_sign(&sum);
 }
 
 int sphere_contains(const isect_shape *s, const double p[3])
 {
-    const double *c = s->data;
-    double r = s->data[3];
-    if (r == 0.0)
+    if (s->data[3] == 0.0)
         return 0;
-    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(p), max_abs3(c))));
-    double p_s[3], c_s[3], f[3];
-    scale3(p_s, p, e);
-    scale3(c_s, c, e);
-    v3_sub(f, p_s, c_s);
-    return sumsq_minus_sq(f, pow2_scale(r, -e)) <= 0.0;
+    return sphere_side(s->data, p) <= 0;
 }
 
 /* ------------------------------------------------------------- ellipsoid */

@@ -1,0 +1,136 @@
+/*
+ * prim_lanes.h — rays and hit records in lane form (one number per lane,
+ * LANE_W rays at once), as the fast kernels (prim/ *_lanes.h) take and give
+ * them. Include after core/lanes.h has been configured for an instruction
+ * set (see lanes.h).
+ *
+ * The fast kernels' contract. A kernel decides, per lane, one of:
+ *  - slow:  its plain arithmetic could not certify the answer (a decision
+ *           within its error bound, a parameter that would not be within
+ *           the accuracy contract, coordinates outside the range its bounds
+ *           assume); the caller runs the family's exact path for that ray
+ *           (prim X_hits), which starts with this same kernel (one lane) and
+ *           so reaches the same verdict;
+ *  - found: the first hit in [tmin, tmax] (by t, then prim, as the
+ *           dispatcher orders them), fully written, decided exactly;
+ *  - neither: certainly no hit in [tmin, tmax].
+ * The same source is the scalar kernel (LANE_W = 1), so a batch's records
+ * are bit for bit those of the scalar calls.
+ */
+#ifndef ISECT_PRIM_LANES_H
+#define ISECT_PRIM_LANES_H
+
+#include "core/eft.h"
+
+/* LANE_W object-space rays. */
+typedef struct lane_ray {
+    vd org[3], dir[3];
+    vd tmin, tmax;
+} lane_ray;
+
+/* LANE_W hit records (the fields of isect_hit; prim and kind as small
+ * whole numbers in doubles), and the kernel's verdict per lane. */
+typedef struct lane_hit {
+    vd t, point[3], normal[3], uv[2];
+    vd prim, kind;
+    vm found, slow;
+} lane_hit;
+
+/* A lane_ray of one ray (the scalar kernels' input). */
+static ALWAYS_INLINE void lane_ray_from(lane_ray *lr, const isect_ray *ray)
+{
+    for (int k = 0; k < 3; k++) {
+        lr->org[k] = vd_set1(ray->org[k]);
+        lr->dir[k] = vd_set1(ray->dir[k]);
+    }
+    lr->tmin = vd_set1(ray->tmin);
+    lr->tmax = vd_set1(ray->tmax);
+}
+
+/* The rays at[0 .. LANE_W) (each record is 8 doubles: org, dir, tmin,
+ * tmax), one per lane. */
+static ALWAYS_INLINE void lane_ray_load(const isect_ray *const at[LANE_W], lane_ray *lr)
+{
+    const double *rows[LANE_W];
+    for (int k = 0; k < LANE_W; k++)
+        rows[k] = at[k]->org;
+    vd col[8];
+    vd_load_rows8(rows, col);
+    for (int k = 0; k < 3; k++) {
+        lr->org[k] = col[k];
+        lr->dir[k] = col[3 + k];
+    }
+    lr->tmin = col[6];
+    lr->tmax = col[7];
+}
+
+/* The lanes whose ray passes ray_check (core.h): org and dir finite, tmin
+ * and tmax not NaN, dir not zero. */
+static ALWAYS_INLINE vm lane_ray_valid(const lane_ray *lr)
+{
+    vd probe = vd_zero();
+    vm nonzero = vm_false();
+    for (int k = 0; k < 3; k++) {
+        probe = vd_add(probe, vd_add(vd_sub(lr->org[k], lr->org[k]), vd_sub(lr->dir[k], lr->dir[k])));
+        nonzero = vm_or(nonzero, vm_not(vd_eq(lr->dir[k], vd_zero())));
+    }
+    vm finite = vd_eq(probe, vd_zero());
+    vm ordered = vm_and(vd_eq(lr->tmin, lr->tmin), vd_eq(lr->tmax, lr->tmax));
+    return vm_and(vm_and(finite, ordered), nonzero);
+}
+
+/* The object-space rays of world-space rays under x, bit for bit as
+ * xform_ray_unchecked (core/xform.c) computes them: each coordinate
+ * ((a0 p0 + a1 p1) + a2 p2) (+ a3 for the origin), in that order. */
+static ALWAYS_INLINE void lane_ray_xform(const isect_xform *x, lane_ray *lr)
+{
+    const double *a = x->inv;
+    vd org[3], dir[3];
+    for (int i = 0; i < 3; i++) {
+        vd a0 = vd_set1(a[4 * i]), a1 = vd_set1(a[4 * i + 1]), a2 = vd_set1(a[4 * i + 2]);
+        org[i] = vd_add(vd_add(vd_add(vd_mul(a0, lr->org[0]), vd_mul(a1, lr->org[1])),
+                               vd_mul(a2, lr->org[2])),
+                        vd_set1(a[4 * i + 3]));
+        dir[i] = vd_add(vd_add(vd_mul(a0, lr->dir[0]), vd_mul(a1, lr->dir[1])),
+                        vd_mul(a2, lr->dir[2]));
+    }
+    for (int k = 0; k < 3; k++) {
+        lr->org[k] = org[k];
+        lr->dir[k] = dir[k];
+    }
+}
+
+/* Lane i of h as an isect_hit. */
+static ALWAYS_INLINE void lane_hit_store(const lane_hit *h, int i, isect_hit *out)
+{
+    out->t = vd_lane(h->t, i);
+    for (int k = 0; k < 3; k++) {
+        out->point[k] = vd_lane(h->point[k], i);
+        out->normal[k] = vd_lane(h->normal[k], i);
+    }
+    out->uv[0] = vd_lane(h->uv[0], i);
+    out->uv[1] = vd_lane(h->uv[1], i);
+    out->prim = (int32_t)vd_lane(h->prim, i);
+    out->kind = (int32_t)vd_lane(h->kind, i);
+}
+
+/* Whether a parameter t known to within err of the exact one lies in
+ * [tmin, tmax]: certainly in, certainly out, or neither (undecided). */
+static ALWAYS_INLINE vm lane_certainly_in(vd t, vd err, const lane_ray *r)
+{
+    return vm_and(vd_ge(vd_sub(t, err), r->tmin), vd_le(vd_add(t, err), r->tmax));
+}
+static ALWAYS_INLINE vm lane_certainly_out(vd t, vd err, const lane_ray *r)
+{
+    return vm_or(vd_lt(vd_add(t, err), r->tmin), vd_gt(vd_sub(t, err), r->tmax));
+}
+
+/* t clamped into [tmin, tmax]: the parameter reported for a crossing
+ * decided to lie in the interval, which its rounded value may have left by
+ * an ulp or two. */
+static ALWAYS_INLINE vd lane_clamp_t(vd t, const lane_ray *r)
+{
+    return vd_min(vd_max(t, r->tmin), r->tmax);
+}
+
+#endif /* ISECT_PRIM_LANES_H */

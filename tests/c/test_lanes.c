@@ -1,0 +1,315 @@
+/*
+ * test_lanes.c — batch records are bit for bit the scalar call's, at every
+ * instruction set the library dispatches to.
+ *
+ * For each analytic shape with a fast kernel, rays of several classes
+ * (random at mixed scales, far and small, grazing / near tangent, origins
+ * within ulps of the surface, interval ends near the crossings, bad rays)
+ * go through isect_intersect_batch under every ISECT_SIMD level and are
+ * compared, record by record with memcmp, with the first hit of
+ * isect_intersect on the same ray (or the MISS / INVALID record isect.h
+ * defines). The test also prints one digest of all the records, which the
+ * test script compares between this build and the portable one
+ * (-DISECT_NO_SIMD): same bits on every build.
+ *
+ *     test_lanes [rays per shape]     (default 1000000)
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "check.h"
+#include "isect.h"
+
+#include <float.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------ random */
+
+static uint64_t rng_state = 0x2545F4914F6CDD1Dull;
+
+static uint64_t rng_next(void)
+{
+    uint64_t x = rng_state;
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    rng_state = x;
+    return x;
+}
+
+/* Uniform in [-1, 1). */
+static double rng_unit(void)
+{
+    return (double)(rng_next() >> 11) * 0x1p-52 - 1.0;
+}
+
+/* 2^k for k uniform in [lo, hi]. */
+static double rng_scale(int lo, int hi)
+{
+    return ldexp(1.0, lo + (int)(rng_next() % (uint64_t)(hi - lo + 1)));
+}
+
+static void rng_dir(double d[3])
+{
+    double len;
+    do {
+        for (int k = 0; k < 3; k++)
+            d[k] = rng_unit();
+        len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    } while (len < 1e-3 || len > 1.0);
+    for (int k = 0; k < 3; k++)
+        d[k] /= len;
+}
+
+/* x moved by k ulps (k may be negative). */
+static double ulps(double x, int k)
+{
+    for (; k > 0; k--)
+        x = nextafter(x, INFINITY);
+    for (; k < 0; k++)
+        x = nextafter(x, -INFINITY);
+    return x;
+}
+
+/* ------------------------------------------------------------ shapes */
+
+/* A shape to test: its descriptor (data in `numbers`), a centre and size
+ * for aiming, and a point-on-surface generator. */
+typedef struct test_shape {
+    const char *name;
+    isect_shape shape;
+    double      numbers[16];
+    isect_xform xform;
+    double      center[3], size;
+} test_shape;
+
+static void shape_sphere(test_shape *ts, const char *name, double cx, double cy, double cz,
+                         double r)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->numbers[0] = cx;
+    ts->numbers[1] = cy;
+    ts->numbers[2] = cz;
+    ts->numbers[3] = r;
+    ts->shape.type = ISECT_SPHERE;
+    ts->shape.data = ts->numbers;
+    ts->center[0] = cx;
+    ts->center[1] = cy;
+    ts->center[2] = cz;
+    ts->size = r;
+}
+
+/* A point near the surface of ts (object space == world space for the
+ * untransformed shapes). */
+static void surface_point(const test_shape *ts, double p[3])
+{
+    double d[3];
+    rng_dir(d);
+    switch (ts->shape.type) {
+    case ISECT_SPHERE:
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->numbers[k] + ts->numbers[3] * d[k];
+        break;
+    default:
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->center[k] + ts->size * d[k];
+        break;
+    }
+    if (ts->shape.xform != NULL) { /* to world space */
+        const double *m = ts->xform.m;
+        double w[3];
+        for (int i = 0; i < 3; i++)
+            w[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+        memcpy(p, w, sizeof w);
+    }
+}
+
+/* ------------------------------------------------------------ rays */
+
+enum ray_class { RANDOM, FAR, GRAZING, NEAR_SURFACE, INTERVAL, BAD, CLASSES };
+
+static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
+{
+    double aim[3], d[3];
+    r->tmin = 0.0;
+    r->tmax = INFINITY;
+    switch (cls) {
+    case RANDOM: /* origins at 1.5..2^20 sizes, aim within 1.3 sizes */
+    default: {
+        double dist = ts->size * 1.5 * rng_scale(0, 20);
+        rng_dir(d);
+        for (int k = 0; k < 3; k++) {
+            r->org[k] = ts->center[k] + dist * d[k];
+            aim[k] = ts->center[k] + 1.3 * ts->size * rng_unit();
+            r->dir[k] = (aim[k] - r->org[k]) * rng_scale(-30, 30);
+        }
+        if (rng_next() % 8 == 0) /* some origins inside */
+            for (int k = 0; k < 3; k++)
+                r->org[k] = ts->center[k] + 0.5 * ts->size * rng_unit();
+        break;
+    }
+    case FAR: { /* tiny objects seen from 2^30..2^50 sizes away */
+        double dist = ts->size * rng_scale(30, 50);
+        rng_dir(d);
+        for (int k = 0; k < 3; k++) {
+            r->org[k] = ts->center[k] + dist * d[k];
+            aim[k] = ts->center[k] + 1.1 * ts->size * rng_unit();
+            r->dir[k] = aim[k] - r->org[k];
+        }
+        break;
+    }
+    case GRAZING: { /* aimed at surface points, then nudged sideways by ~ulps */
+        double p[3];
+        surface_point(ts, p);
+        double dist = ts->size * rng_scale(0, 12);
+        rng_dir(d);
+        for (int k = 0; k < 3; k++)
+            r->org[k] = p[k] + dist * d[k];
+        for (int k = 0; k < 3; k++)
+            r->dir[k] = ulps(p[k], (int)(rng_next() % 9) - 4) - r->org[k];
+        break;
+    }
+    case NEAR_SURFACE: { /* origins within a few ulps of the surface */
+        double p[3];
+        surface_point(ts, p);
+        for (int k = 0; k < 3; k++)
+            r->org[k] = ulps(p[k], (int)(rng_next() % 7) - 3);
+        rng_dir(r->dir);
+        break;
+    }
+    case INTERVAL: { /* a crossing near tmin or tmax */
+        make_ray(ts, RANDOM, r);
+        isect_hit h[4];
+        int n = isect_intersect(&ts->shape, r, NULL, h, 4);
+        if (n > 0) {
+            double t = h[rng_next() % (uint64_t)(n < 4 ? n : 4)].t;
+            int k = (int)(rng_next() % 9) - 4;
+            if (rng_next() % 2)
+                r->tmin = ulps(t, k);
+            else
+                r->tmax = ulps(t, k);
+        }
+        break;
+    }
+    case BAD: {
+        make_ray(ts, RANDOM, r);
+        switch (rng_next() % 4) {
+        case 0: r->org[rng_next() % 3] = NAN; break;
+        case 1: r->dir[rng_next() % 3] = INFINITY; break;
+        case 2: r->dir[0] = r->dir[1] = r->dir[2] = 0.0; break;
+        default: r->tmin = NAN; break;
+        }
+        break;
+    }
+    }
+}
+
+/* ------------------------------------------------------------ checks */
+
+/* The record isect_intersect_batch must write for ray r: the first hit of
+ * the scalar call, or MISS / INVALID as isect.h defines them. */
+static void scalar_record(const isect_shape *s, const isect_ray *r, isect_hit *out)
+{
+    isect_hit h[8];
+    int n = isect_intersect(s, r, NULL, h, 8);
+    if (n > 0) {
+        *out = h[0];
+        return;
+    }
+    memset(out, 0, sizeof *out);
+    out->t = n < 0 ? NAN : INFINITY;
+    out->prim = -1;
+    out->kind = n < 0 ? ISECT_INVALID : ISECT_MISS;
+}
+
+static uint64_t digest = 0xcbf29ce484222325ull; /* FNV-1a over every record */
+
+static void digest_add(const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) {
+        digest ^= b[i];
+        digest *= 0x100000001b3ull;
+    }
+}
+
+static const char *const levels[] = { "scalar", "sse2", "avx2", "avx512" };
+
+static void test_shape_rays(const test_shape *ts, int64_t n)
+{
+    isect_ray *rays = malloc((size_t)n * sizeof *rays);
+    isect_hit *want = malloc((size_t)n * sizeof *want);
+    isect_hit *got = malloc((size_t)n * sizeof *got);
+    if (rays == NULL || want == NULL || got == NULL) {
+        CHECK(!"allocation");
+        free(rays); free(want); free(got);
+        return;
+    }
+    for (int64_t i = 0; i < n; i++) {
+        make_ray(ts, (enum ray_class)(i % CLASSES), &rays[i]);
+        scalar_record(&ts->shape, &rays[i], &want[i]);
+    }
+    int64_t want_hits = 0;
+    for (int64_t i = 0; i < n; i++)
+        want_hits += want[i].kind != ISECT_MISS && want[i].kind != ISECT_INVALID;
+    for (int lv = 0; lv < 4; lv++) {
+        setenv("ISECT_SIMD", levels[lv], 1);
+        memset(got, 0xA5, (size_t)n * sizeof *got);
+        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, NULL, got);
+        CHECK_EQ_INT(hits, want_hits);
+        int64_t bad = 0;
+        for (int64_t i = 0; i < n; i++) {
+            if (memcmp(&got[i], &want[i], sizeof got[i]) != 0) {
+                if (bad++ < 3)
+                    fprintf(stderr, "%s [%s] ray %lld (class %d): batch t=%.17g kind=%d, "
+                            "scalar t=%.17g kind=%d\n", ts->name, levels[lv], (long long)i,
+                            (int)(i % CLASSES), got[i].t, got[i].kind, want[i].t, want[i].kind);
+            }
+        }
+        if (bad != 0)
+            fprintf(stderr, "%s [%s]: %lld of %lld records differ\n", ts->name, levels[lv],
+                    (long long)bad, (long long)n);
+        CHECK(bad == 0);
+    }
+    unsetenv("ISECT_SIMD");
+    for (int64_t i = 0; i < n; i++) {
+        /* INVALID records carry NaN: hash its class, not its payload bits */
+        if (want[i].kind == ISECT_INVALID)
+            digest_add(&want[i].kind, sizeof want[i].kind);
+        else
+            digest_add(&want[i], sizeof want[i]);
+    }
+    free(rays);
+    free(want);
+    free(got);
+}
+
+int main(int argc, char **argv)
+{
+    int64_t n = argc > 1 ? atoll(argv[1]) : 1000000;
+    if (n < CLASSES)
+        n = CLASSES;
+    enum { SHAPES = 5 };
+    test_shape shapes[SHAPES];
+    shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
+    shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
+    shape_sphere(&shapes[2], "huge sphere", -1e9, 2e9, 0.5, 3e8);
+    shape_sphere(&shapes[3], "tiny sphere", 1e-150, 2e-150, -1e-150, 1e-151);
+    shape_sphere(&shapes[4], "transformed sphere", 1.0, 2.0, 3.0, 0.75);
+    static const double m[16] = { 0.8, -0.6, 0.1, 5.0, 0.6, 0.8, 0.2, -1.0,
+                                  0.0, 0.3, 2.0, 0.25, 0.0, 0.0, 0.0, 1.0 };
+    CHECK(isect_xform_init(&shapes[4].xform, m) == ISECT_OK);
+    shapes[4].shape.xform = &shapes[4].xform;
+    /* aim at the sphere's world-space image: surface_point maps its
+     * object-space points by m; the centre and size are only for aiming */
+    const double *c = shapes[4].numbers;
+    for (int i = 0; i < 3; i++)
+        shapes[4].center[i] = m[4 * i] * c[0] + m[4 * i + 1] * c[1] + m[4 * i + 2] * c[2] + m[4 * i + 3];
+    shapes[4].size = 2.0 * c[3];
+    for (int i = 0; i < SHAPES; i++)
+        test_shape_rays(&shapes[i], n / SHAPES);
+    printf("digest %016llx\n", (unsigned long long)digest);
+    return check_summary();
+}
