@@ -426,9 +426,11 @@ static void tb_convex(const kernel *k, const isect_ray *rays, int64_t n, isect_h
             else if (nd == 0.0 && no > 0.0)
                 outside = 1;
         }
-        if (!outside && enter <= exit && in_range(enter, r))
+        /* (An unbounded polyhedron may have no entry or no exit plane.) */
+        if (!outside && enter <= exit && enter_plane >= 0 && in_range(enter, r))
             put_hit(&out[i], r, enter, unit + 3 * enter_plane, enter_plane, ISECT_ENTER);
-        else if (!outside && enter <= exit && enter < r->tmin && in_range(exit, r))
+        else if (!outside && enter <= exit && enter < r->tmin && exit_plane >= 0
+                 && in_range(exit, r))
             put_hit(&out[i], r, exit, unit + 3 * exit_plane, exit_plane, ISECT_EXIT);
         else
             put_miss(&out[i]);
