@@ -124,12 +124,21 @@ $(B)/bench/%: bench/%.c $(STLIB)
 $(B)/bench/bench_mesh: bench/bench_mesh.c tests/c/mesh_fixtures.h $(STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O2 -Ilibisect/include -Itests/c $< -o $@ $(STLIB) -lembree3 -lm
-bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh venv
+# The kernel benchmark's textbook loops are compiled as a user's own code:
+# -O2 -march=native with GCC's default FMA contraction (which -std=c99 turns
+# off); the library it is compared with is $(STLIB) as built above.
+$(B)/bench/bench_kernels: bench/bench_kernels.c $(STLIB)
+	@mkdir -p $(@D)
+	$(CC) $(WARN) -O2 -march=native -ffp-contract=fast -Ilibisect/include $< -o $@ $(STLIB) -lm
+bench: $(B)/bench/bench_batch $(B)/bench/bench_mesh $(B)/bench/bench_kernels venv
 	mkdir -p bench/results
 	$(B)/bench/bench_batch
 	$(B)/bench/bench_mesh
+	$(B)/bench/bench_kernels
 	.venv/bin/python bench/python_bench.py
 	.venv/bin/python bench/python_mesh_bench.py
+	.venv/bin/python bench/python_kernels_bench.py
+	.venv/bin/python bench/summary.py
 
 # ---------------------------------------------------------------- demo
 # The main job: renders every primitive through the Python API (batch calls,
