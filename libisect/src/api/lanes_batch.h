@@ -33,34 +33,54 @@ static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_r
  * kernel over the rest, packed LANE_W to a block. */
 #define LANES_CHUNK 256
 
-/* The object-space rays of a chunk, field by field (org, dir, tmin, tmax). */
-typedef struct lanes_scratch {
-    double field[8][LANES_CHUNK];
-} lanes_scratch;
-
-static ALWAYS_INLINE void LANES_FN(scratch_put)(lanes_scratch *sc, int at, const lane_ray *lr)
+/* LANE_W rays from the records at rows[k] (object space). */
+static ALWAYS_INLINE void LANES_FN(load)(const isect_ray *const at[LANE_W], lane_ray *lr)
 {
-    for (int k = 0; k < 3; k++) {
-        vd_store(&sc->field[k][at], lr->org[k]);
-        vd_store(&sc->field[3 + k][at], lr->dir[k]);
-    }
-    vd_store(&sc->field[6][at], lr->tmin);
-    vd_store(&sc->field[7][at], lr->tmax);
+    const double *rows[LANE_W];
+    for (int k = 0; k < LANE_W; k++)
+        rows[k] = at[k]->org;
+    vd col[8];
+    vd_load_rows8(rows, col);
+    lr->org[0] = col[0];
+    lr->org[1] = col[1];
+    lr->org[2] = col[2];
+    lr->dir[0] = col[3];
+    lr->dir[1] = col[4];
+    lr->dir[2] = col[5];
+    lr->tmin = col[6];
+    lr->tmax = col[7];
 }
 
-/* Lane k of lr from entry idx[k] of the scratch. */
-static ALWAYS_INLINE void LANES_FN(scratch_get)(const lanes_scratch *sc, const int idx[LANE_W],
-                                                lane_ray *lr)
+/*
+ * The records of LANE_W lanes: the hit where found, the miss record where
+ * not (it is already there, written by pass 1; writing it again keeps the
+ * stores unconditional). The first 64 bytes of each record (t, point,
+ * normal, u) go out transposed, the last 16 (v, prim, kind) lane by lane.
+ * Lanes may repeat a record (the padding of the last block): they write
+ * the same bytes.
+ */
+static ALWAYS_INLINE void LANES_FN(store)(const lane_hit *h, isect_hit *const out[LANE_W])
 {
-    vd v[8];
-    for (int c = 0; c < 8; c++)
-        v[c] = vd_gather_idx(sc->field[c], idx);
-    for (int k = 0; k < 3; k++) {
-        lr->org[k] = v[k];
-        lr->dir[k] = v[3 + k];
+    vm found = h->found;
+    vd inf = vd_set1(INFINITY), zero = vd_zero();
+    vd col[8] = { vd_sel(found, h->t, inf),
+                  vd_sel(found, h->point[0], zero), vd_sel(found, h->point[1], zero),
+                  vd_sel(found, h->point[2], zero), vd_sel(found, h->normal[0], zero),
+                  vd_sel(found, h->normal[1], zero), vd_sel(found, h->normal[2], zero),
+                  vd_sel(found, h->uv[0], zero) };
+    double *rows[LANE_W];
+    for (int k = 0; k < LANE_W; k++)
+        rows[k] = &out[k]->t;
+    vd_store_rows8(rows, col);
+    double v[LANE_W], prim[LANE_W], kind[LANE_W];
+    vd_store(v, vd_sel(found, h->uv[1], zero));
+    vd_store(prim, vd_sel(found, h->prim, vd_set1(-1.0)));
+    vd_store(kind, vd_sel(found, h->kind, vd_set1((double)ISECT_MISS)));
+    for (int k = 0; k < LANE_W; k++) {
+        out[k]->uv[1] = v[k];
+        out[k]->prim = (int32_t)prim[k];
+        out[k]->kind = (int32_t)kind[k];
     }
-    lr->tmin = v[6];
-    lr->tmax = v[7];
 }
 
 /* The miss record, written without a call (most rays of a batch). */
@@ -75,21 +95,22 @@ static ALWAYS_INLINE void LANES_FN(put_miss)(isect_hit *out)
  * The loop. A transformed shape's rays are taken to object space in the
  * lanes, by the arithmetic of xform_ray_unchecked (a ray the transform
  * takes out of the finite doubles is INVALID, as shape_ray_first reports
- * it); a lane the kernel defers runs through shape_ray_first; so do the
- * last n mod LANE_W rays of the batch.
+ * it), and kept for pass 2; a lane the kernel defers runs through
+ * shape_ray_first; so do the last n mod LANE_W rays of the batch.
  */
 static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel kernel,
                                             const void *prep, const shape_family *f,
-                                            const isect_shape *s,
-                                            const isect_ray *rays, int64_t n,
-                                            const isect_params *prm, isect_hit *closest)
+                                            const isect_shape *s, const isect_ray *rays,
+                                            int64_t n, const isect_params *prm,
+                                            isect_hit *closest)
 {
     int64_t hit_count = 0, base = 0;
     int64_t full = n - n % LANE_W;
-    lanes_scratch sc;
+    isect_ray object[LANES_CHUNK];
     for (; base < full; base += LANES_CHUNK) {
         int chunk = full - base < LANES_CHUNK ? (int)(full - base) : LANES_CHUNK;
-        int cand[LANES_CHUNK];
+        const isect_ray *src = s->xform != NULL ? object : rays + base;
+        int cand[LANES_CHUNK + LANE_W];
         int cand_count = 0;
 
         /* Pass 1: validity, object space, screen. */
@@ -98,19 +119,24 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             for (int lane = 0; lane < LANE_W; lane++)
                 at[lane] = &rays[base + i + lane];
             lane_ray lr;
-            lane_ray_load(at, &lr);
+            LANES_FN(load)(at, &lr);
             vm valid = lane_ray_valid(&lr);
             if (s->xform != NULL) {
                 lane_ray_xform(s->xform, &lr);
                 valid = vm_and(valid, lane_ray_valid(&lr));
+                double *rows[LANE_W];
+                for (int lane = 0; lane < LANE_W; lane++)
+                    rows[lane] = object[i + lane].org;
+                const vd col[8] = { lr.org[0], lr.org[1], lr.org[2], lr.dir[0],
+                                    lr.dir[1], lr.dir[2], lr.tmin, lr.tmax };
+                vd_store_rows8(rows, col);
             }
             unsigned ok = vm_bits(valid);
             unsigned maybe = (screen != NULL ? vm_bits(screen(prep, &lr)) : LANE_ALL) & ok;
-            LANES_FN(scratch_put)(&sc, i, &lr);
             /* Without branches on the outcome (random rays would
              * mispredict half of them): every record starts as a miss,
              * candidates are appended by a counted store, and the kernel
-             * overwrites the records of the candidates it finds hits for. */
+             * overwrites the records of the candidates. */
             for (int lane = 0; lane < LANE_W; lane++) {
                 LANES_FN(put_miss)(&closest[base + i + lane]);
                 cand[cand_count] = i + lane;
@@ -123,45 +149,35 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
         }
 
         /* Pass 2: the kernel on the candidates, the last block padded with
-         * copies of the last candidate (computed, not written). */
+         * copies of the last candidate. */
+        for (int c = cand_count; c < cand_count + LANE_W; c++)
+            cand[c] = cand_count > 0 ? cand[cand_count - 1] : 0;
         for (int c = 0; c < cand_count; c += LANE_W) {
-            int idx[LANE_W];
-            for (int lane = 0; lane < LANE_W; lane++)
-                idx[lane] = cand[c + lane < cand_count ? c + lane : cand_count - 1];
+            const isect_ray *at[LANE_W];
+            isect_hit *out[LANE_W];
+            for (int lane = 0; lane < LANE_W; lane++) {
+                at[lane] = &src[cand[c + lane]];
+                out[lane] = &closest[base + cand[c + lane]];
+            }
             lane_ray lr;
-            LANES_FN(scratch_get)(&sc, idx, &lr);
+            LANES_FN(load)(at, &lr);
             lane_hit h;
             kernel(prep, &lr, &h);
-
-            enum { T, PX, PY, PZ, NX, NY, NZ, U, V, PRIM, KIND, FIELDS };
-            double field[FIELDS][LANE_W];
-            const vd *src[FIELDS] = { &h.t, &h.point[0], &h.point[1], &h.point[2], &h.normal[0],
-                                      &h.normal[1], &h.normal[2], &h.uv[0], &h.uv[1], &h.prim,
-                                      &h.kind };
-            for (int k = 0; k < FIELDS; k++)
-                vd_store(field[k], *src[k]);
-            unsigned found = vm_bits(h.found), slow = vm_bits(h.slow);
+            unsigned slow = vm_bits(h.slow);
+            h.found = vm_andnot(h.found, h.slow);
+            if (s->xform != NULL)
+                lane_hit_to_world(s->xform, &h);
+            LANES_FN(store)(&h, out);
             int lanes = cand_count - c < LANE_W ? cand_count - c : LANE_W;
-            for (int lane = 0; lane < lanes; lane++) {
-                int64_t i = base + idx[lane];
-                isect_hit *out = &closest[i];
-                if (slow & (1u << lane)) {
-                    hit_count += batch_record(out, shape_ray_first(f, s, &rays[i], prm, out));
-                } else if (found & (1u << lane)) {
-                    out->t = field[T][lane];
-                    out->point[0] = field[PX][lane];
-                    out->point[1] = field[PY][lane];
-                    out->point[2] = field[PZ][lane];
-                    out->normal[0] = field[NX][lane];
-                    out->normal[1] = field[NY][lane];
-                    out->normal[2] = field[NZ][lane];
-                    out->uv[0] = field[U][lane];
-                    out->uv[1] = field[V][lane];
-                    out->prim = (int32_t)field[PRIM][lane];
-                    out->kind = (int32_t)field[KIND][lane];
-                    shape_hits_to_world(s, out, 1);
-                    hit_count++;
-                } /* else: the miss record of pass 1 stands */
+            hit_count += lane_count(vm_bits(h.found) & ((1u << lanes) - 1u));
+            if (slow != 0) {
+                for (int lane = 0; lane < lanes; lane++) {
+                    if (!(slow & (1u << lane)))
+                        continue;
+                    int64_t i = base + cand[c + lane];
+                    hit_count += batch_record(&closest[i],
+                                              shape_ray_first(f, s, &rays[i], prm, &closest[i]));
+                }
             }
         }
     }

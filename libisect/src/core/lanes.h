@@ -90,6 +90,12 @@ static ALWAYS_INLINE void vd_load_rows8(const double *const rows[LANE_W], vd out
     for (int c = 0; c < 8; c++)
         out[c] = rows[0][c];
 }
+/* The inverse: rows[k][c] = lane k of in[c]. */
+static ALWAYS_INLINE void vd_store_rows8(double *const rows[LANE_W], const vd in[8])
+{
+    for (int c = 0; c < 8; c++)
+        rows[0][c] = in[c];
+}
 
 /* --------------------------------------------------------------- SSE2 */
 #elif LANE_ISA == LANE_ISA_SSE2
@@ -144,6 +150,13 @@ static ALWAYS_INLINE void vd_load_rows8(const double *const rows[LANE_W], vd out
         __m128d a = _mm_loadu_pd(rows[0] + c), b = _mm_loadu_pd(rows[1] + c);
         out[c] = _mm_unpacklo_pd(a, b);
         out[c + 1] = _mm_unpackhi_pd(a, b);
+    }
+}
+static ALWAYS_INLINE void vd_store_rows8(double *const rows[LANE_W], const vd in[8])
+{
+    for (int c = 0; c < 8; c += 2) {
+        _mm_storeu_pd(rows[0] + c, _mm_unpacklo_pd(in[c], in[c + 1]));
+        _mm_storeu_pd(rows[1] + c, _mm_unpackhi_pd(in[c], in[c + 1]));
     }
 }
 /*
@@ -231,18 +244,32 @@ static ALWAYS_INLINE vd vd_gather_idx(const double *base, const int idx[LANE_W])
 {
     return _mm256_i32gather_pd(base, _mm_loadu_si128((const __m128i *)(const void *)idx), 8);
 }
+static ALWAYS_INLINE void vd_transpose4(__m256d r0, __m256d r1, __m256d r2, __m256d r3,
+                                        vd out[4])
+{
+    __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
+    __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
+    out[0] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+    out[1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+    out[2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+    out[3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+}
 static ALWAYS_INLINE void vd_load_rows8(const double *const rows[LANE_W], vd out[8])
 {
-    for (int half = 0; half < 8; half += 4) { /* two 4x4 transposes */
-        __m256d r0 = _mm256_loadu_pd(rows[0] + half), r1 = _mm256_loadu_pd(rows[1] + half);
-        __m256d r2 = _mm256_loadu_pd(rows[2] + half), r3 = _mm256_loadu_pd(rows[3] + half);
-        __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
-        __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
-        out[half] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
-        out[half + 1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
-        out[half + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
-        out[half + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
-    }
+    vd_transpose4(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]),
+                  _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3]), out);
+    vd_transpose4(_mm256_loadu_pd(rows[0] + 4), _mm256_loadu_pd(rows[1] + 4),
+                  _mm256_loadu_pd(rows[2] + 4), _mm256_loadu_pd(rows[3] + 4), out + 4);
+}
+static ALWAYS_INLINE void vd_store_rows8(double *const rows[LANE_W], const vd in[8])
+{
+    vd r[4];
+    vd_transpose4(in[0], in[1], in[2], in[3], r);
+    for (int k = 0; k < 4; k++)
+        _mm256_storeu_pd(rows[k], r[k]);
+    vd_transpose4(in[4], in[5], in[6], in[7], r);
+    for (int k = 0; k < 4; k++)
+        _mm256_storeu_pd(rows[k] + 4, r[k]);
 }
 
 /* ------------------------------------------------------------ AVX-512 */
@@ -307,35 +334,52 @@ static ALWAYS_INLINE vd vd_gather_idx(const double *base, const int idx[LANE_W])
 }
 /* 8x8 transpose: pairs interleaved (unpacklo / unpackhi), then 128-bit
  * blocks gathered in two rounds of shuffle_f64x2 (0x88: blocks 0 and 2 of
- * each source, 0xDD: blocks 1 and 3). */
+ * each source, 0xDD: blocks 1 and 3). Written out: GCC keeps loops over
+ * vector arrays in memory. */
+static ALWAYS_INLINE void vd_transpose8(__m512d r0, __m512d r1, __m512d r2, __m512d r3,
+                                        __m512d r4, __m512d r5, __m512d r6, __m512d r7,
+                                        vd out[8])
+{
+    /* lo01 block j = (rows 0, 1) at column 2j; hi01: column 2j + 1 */
+    __m512d lo01 = _mm512_unpacklo_pd(r0, r1), hi01 = _mm512_unpackhi_pd(r0, r1);
+    __m512d lo23 = _mm512_unpacklo_pd(r2, r3), hi23 = _mm512_unpackhi_pd(r2, r3);
+    __m512d lo45 = _mm512_unpacklo_pd(r4, r5), hi45 = _mm512_unpackhi_pd(r4, r5);
+    __m512d lo67 = _mm512_unpacklo_pd(r6, r7), hi67 = _mm512_unpackhi_pd(r6, r7);
+    __m512d x04 = _mm512_shuffle_f64x2(lo01, lo23, 0x88); /* cols 0, 4 of rows 0-3 */
+    __m512d x26 = _mm512_shuffle_f64x2(lo01, lo23, 0xDD); /* cols 2, 6 */
+    __m512d x15 = _mm512_shuffle_f64x2(hi01, hi23, 0x88); /* cols 1, 5 */
+    __m512d x37 = _mm512_shuffle_f64x2(hi01, hi23, 0xDD); /* cols 3, 7 */
+    __m512d y04 = _mm512_shuffle_f64x2(lo45, lo67, 0x88); /* the same, rows 4-7 */
+    __m512d y26 = _mm512_shuffle_f64x2(lo45, lo67, 0xDD);
+    __m512d y15 = _mm512_shuffle_f64x2(hi45, hi67, 0x88);
+    __m512d y37 = _mm512_shuffle_f64x2(hi45, hi67, 0xDD);
+    out[0] = _mm512_shuffle_f64x2(x04, y04, 0x88);
+    out[4] = _mm512_shuffle_f64x2(x04, y04, 0xDD);
+    out[2] = _mm512_shuffle_f64x2(x26, y26, 0x88);
+    out[6] = _mm512_shuffle_f64x2(x26, y26, 0xDD);
+    out[1] = _mm512_shuffle_f64x2(x15, y15, 0x88);
+    out[5] = _mm512_shuffle_f64x2(x15, y15, 0xDD);
+    out[3] = _mm512_shuffle_f64x2(x37, y37, 0x88);
+    out[7] = _mm512_shuffle_f64x2(x37, y37, 0xDD);
+}
 static ALWAYS_INLINE void vd_load_rows8(const double *const rows[LANE_W], vd out[8])
 {
-    __m512d r[8];
-    for (int k = 0; k < 8; k++)
-        r[k] = _mm512_loadu_pd(rows[k]);
-    __m512d lo[4], hi[4];
-    for (int k = 0; k < 4; k++) {
-        lo[k] = _mm512_unpacklo_pd(r[2 * k], r[2 * k + 1]);
-        hi[k] = _mm512_unpackhi_pd(r[2 * k], r[2 * k + 1]);
-    }
-    /* lo[k] block j = (rows 2k, 2k+1) at column 2j; hi: column 2j + 1 */
-    __m512d x[4], y[4];
-    x[0] = _mm512_shuffle_f64x2(lo[0], lo[1], 0x88); /* cols 0, 4 of rows 0-3 */
-    x[1] = _mm512_shuffle_f64x2(lo[0], lo[1], 0xDD); /* cols 2, 6 */
-    x[2] = _mm512_shuffle_f64x2(hi[0], hi[1], 0x88); /* cols 1, 5 */
-    x[3] = _mm512_shuffle_f64x2(hi[0], hi[1], 0xDD); /* cols 3, 7 */
-    y[0] = _mm512_shuffle_f64x2(lo[2], lo[3], 0x88); /* the same for rows 4-7 */
-    y[1] = _mm512_shuffle_f64x2(lo[2], lo[3], 0xDD);
-    y[2] = _mm512_shuffle_f64x2(hi[2], hi[3], 0x88);
-    y[3] = _mm512_shuffle_f64x2(hi[2], hi[3], 0xDD);
-    out[0] = _mm512_shuffle_f64x2(x[0], y[0], 0x88);
-    out[4] = _mm512_shuffle_f64x2(x[0], y[0], 0xDD);
-    out[2] = _mm512_shuffle_f64x2(x[1], y[1], 0x88);
-    out[6] = _mm512_shuffle_f64x2(x[1], y[1], 0xDD);
-    out[1] = _mm512_shuffle_f64x2(x[2], y[2], 0x88);
-    out[5] = _mm512_shuffle_f64x2(x[2], y[2], 0xDD);
-    out[3] = _mm512_shuffle_f64x2(x[3], y[3], 0x88);
-    out[7] = _mm512_shuffle_f64x2(x[3], y[3], 0xDD);
+    vd_transpose8(_mm512_loadu_pd(rows[0]), _mm512_loadu_pd(rows[1]), _mm512_loadu_pd(rows[2]),
+                  _mm512_loadu_pd(rows[3]), _mm512_loadu_pd(rows[4]), _mm512_loadu_pd(rows[5]),
+                  _mm512_loadu_pd(rows[6]), _mm512_loadu_pd(rows[7]), out);
+}
+static ALWAYS_INLINE void vd_store_rows8(double *const rows[LANE_W], const vd in[8])
+{
+    vd r[8];
+    vd_transpose8(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], r);
+    _mm512_storeu_pd(rows[0], r[0]);
+    _mm512_storeu_pd(rows[1], r[1]);
+    _mm512_storeu_pd(rows[2], r[2]);
+    _mm512_storeu_pd(rows[3], r[3]);
+    _mm512_storeu_pd(rows[4], r[4]);
+    _mm512_storeu_pd(rows[5], r[5]);
+    _mm512_storeu_pd(rows[6], r[6]);
+    _mm512_storeu_pd(rows[7], r[7]);
 }
 
 #else
@@ -346,5 +390,8 @@ static ALWAYS_INLINE void vd_load_rows8(const double *const rows[LANE_W], vd out
 #define LANE_ALL ((1u << LANE_W) - 1u)
 
 static ALWAYS_INLINE vd vd_zero(void) { return vd_set1(0.0); }
+
+static ALWAYS_INLINE int vm_any(vm a) { return vm_bits(a) != 0; }
+static ALWAYS_INLINE int vm_all(vm a) { return vm_bits(a) == LANE_ALL; }
 
 #endif /* ISECT_LANES_H */

@@ -68,12 +68,11 @@ static ALWAYS_INLINE void lane_ray_load(const isect_ray *const at[LANE_W], lane_
  * and tmax not NaN, dir not zero. */
 static ALWAYS_INLINE vm lane_ray_valid(const lane_ray *lr)
 {
-    vd probe = vd_zero();
-    vm nonzero = vm_false();
-    for (int k = 0; k < 3; k++) {
-        probe = vd_add(probe, vd_add(vd_sub(lr->org[k], lr->org[k]), vd_sub(lr->dir[k], lr->dir[k])));
-        nonzero = vm_or(nonzero, vm_not(vd_eq(lr->dir[k], vd_zero())));
-    }
+    const vd *o = lr->org, *d = lr->dir;
+    vd probe = vd_add(vd_add(vd_add(vd_sub(o[0], o[0]), vd_sub(o[1], o[1])), vd_sub(o[2], o[2])),
+                      vd_add(vd_add(vd_sub(d[0], d[0]), vd_sub(d[1], d[1])), vd_sub(d[2], d[2])));
+    vd d_max = vd_max(vd_abs(d[0]), vd_max(vd_abs(d[1]), vd_abs(d[2])));
+    vm nonzero = vd_gt(d_max, vd_zero());
     vm finite = vd_eq(probe, vd_zero());
     vm ordered = vm_and(vd_eq(lr->tmin, lr->tmin), vd_eq(lr->tmax, lr->tmax));
     return vm_and(vm_and(finite, ordered), nonzero);
@@ -98,6 +97,43 @@ static ALWAYS_INLINE void lane_ray_xform(const isect_xform *x, lane_ray *lr)
         lr->org[k] = org[k];
         lr->dir[k] = dir[k];
     }
+}
+
+/* The records back to world space, bit for bit as xform_hits_unchecked
+ * (core/xform.c): points by m (((m0 p0 + m1 p1) + m2 p2) + m3), normals by
+ * the transpose of inv's linear part, then v3_normalize (divided by the
+ * largest magnitude, then by the length; zero when that is not positive
+ * and finite). */
+static ALWAYS_INLINE void lane_hit_to_world(const isect_xform *x, lane_hit *h)
+{
+    const double *m = x->m, *a = x->inv;
+    vd p[3], r[3];
+    for (int i = 0; i < 3; i++) {
+        p[i] = vd_add(vd_add(vd_add(vd_mul(vd_set1(m[4 * i]), h->point[0]),
+                                    vd_mul(vd_set1(m[4 * i + 1]), h->point[1])),
+                             vd_mul(vd_set1(m[4 * i + 2]), h->point[2])),
+                      vd_set1(m[4 * i + 3]));
+        r[i] = vd_add(vd_add(vd_mul(vd_set1(a[i]), h->normal[0]), vd_mul(vd_set1(a[4 + i]), h->normal[1])),
+                      vd_mul(vd_set1(a[8 + i]), h->normal[2]));
+    }
+    vd big = vd_max(vd_abs(r[0]), vd_max(vd_abs(r[1]), vd_abs(r[2])));
+    vm usable = vm_and(vd_gt(big, vd_zero()), vd_le(big, vd_set1(1.7976931348623157e308)));
+    vd x0 = vd_div(r[0], big), x1 = vd_div(r[1], big), x2 = vd_div(r[2], big);
+    vd len = vd_sqrt(vd_add(vd_add(vd_mul(x0, x0), vd_mul(x1, x1)), vd_mul(x2, x2)));
+    h->normal[0] = vd_sel(usable, vd_div(x0, len), vd_zero());
+    h->normal[1] = vd_sel(usable, vd_div(x1, len), vd_zero());
+    h->normal[2] = vd_sel(usable, vd_div(x2, len), vd_zero());
+    for (int i = 0; i < 3; i++)
+        h->point[i] = p[i];
+}
+
+/* The number of set bits of a lane mask (LANE_W <= 8). */
+static ALWAYS_INLINE int lane_count(unsigned bits)
+{
+    int n = 0;
+    for (; bits != 0; bits &= bits - 1u)
+        n++;
+    return n;
 }
 
 /* Lane i of h as an isect_hit. */

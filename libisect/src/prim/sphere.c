@@ -167,18 +167,18 @@ static int sphere_exact(const double *data, const isect_ray *ray, double eps,
         }
     }
 
-    /* The kernel's quantities, rounded from the exact ones. */
+    /* The kernel's formulas on the values rounded from the exact ones: the
+     * roots, l = (d x m)/D (m = f x d, exactly to dd) and w = sqrt(G)/D, so
+     * that the crossings' vectors from the centre are l -+ w d (the foot of
+     * the perpendicular and the half chord: small where f + t d would
+     * cancel). */
     vdd dv, bv, cv, gv;
     xp_dd(&dd, &dv.hi, &dv.lo);
     xp_dd(&b, &bv.hi, &bv.lo);
     xp_dd(&cc, &cv.hi, &cv.lo);
     xp_dd(&g, &gv.hi, &gv.lo);
-    sphere_lanes sl;
-    lane_ray lr;
-    isect_ray scaled_ray = { { o_s[0], o_s[1], o_s[2] }, { d_s[0], d_s[1], d_s[2] },
-                             pow2_scale(ray->tmin, -t_shift), pow2_scale(ray->tmax, -t_shift) };
-    lane_ray_from(&lr, &scaled_ray);
-    for (int k = 0; k < 3; k++) { /* l = (d x m)/D, m = f x d, exactly to dd */
+    double l[3];
+    for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         xp m_i, m_j;
         xp_scale(&m_i, &f[j], d_s[k]);   /* m_i = f_j d_k - f_k d_j */
@@ -192,18 +192,15 @@ static int sphere_exact(const double *data, const isect_ray *ray, double eps,
         xp_sub(&tmp, &tmp, &tmp2);
         vdd num;
         xp_dd(&tmp, &num.hi, &num.lo);
-        sl.l[k] = dd_div(num, dv);
+        l[k] = dd_div(num, dv);
     }
-    sl.touch = touch;
-    sl.slow = 0;
-    int count = 0;
+    double t[2], w = 0.0;
+    int in[2];
     if (touch) {
         vdd minus_b = { -bv.hi, -bv.lo };
-        sl.t[0] = dd_div(minus_b, dv);
-        sl.t[1] = sl.t[0];
-        sl.w = 0.0;
-        sl.in[0] = mid_ok[0] && mid_ok[1];
-        sl.in[1] = 0;
+        t[0] = t[1] = dd_div(minus_b, dv);
+        in[0] = mid_ok[0] && mid_ok[1];
+        in[1] = 0;
     } else {
         double s = sqrt(gv.hi);
         vdd s2 = two_prod(s, s);
@@ -214,24 +211,37 @@ static int sphere_exact(const double *data, const isect_ray *ray, double eps,
         q.lo = -(q.lo + (bv.lo + sigma * sqrt_g.lo));
         q = dd_renorm(q);
         double t1 = dd_div(q, dv), t2 = dd_div(cv, q);
-        sl.t[0] = sigma > 0.0 ? t1 : t2;
-        sl.t[1] = sigma > 0.0 ? t2 : t1;
-        sl.t[0] = fmin(sl.t[0], sl.t[1]);
-        sl.w = dd_div(sqrt_g, dv);
-        sl.in[0] = lo_ok[0] && lo_ok[1];
-        sl.in[1] = hi_ok[0] && hi_ok[1];
+        t[0] = sigma > 0.0 ? t1 : t2;
+        t[1] = sigma > 0.0 ? t2 : t1;
+        t[0] = fmin(t[0], t[1]);
+        w = dd_div(sqrt_g, dv);
+        in[0] = lo_ok[0] && lo_ok[1];
+        in[1] = hi_ok[0] && hi_ok[1];
     }
-    for (int i = 0; i < 2; i++)
-        sl.t[i] = lane_clamp_t(sl.t[i], &lr) + 0.0;
+
+    /* The records, in the scaled units, then scaled back. */
+    lane_ray lr;
+    isect_ray scaled_ray = { { o_s[0], o_s[1], o_s[2] }, { d_s[0], d_s[1], d_s[2] },
+                             pow2_scale(ray->tmin, -t_shift), pow2_scale(ray->tmax, -t_shift) };
+    lane_ray_from(&lr, &scaled_ray);
     sphere_prep sp;
     sphere_prepare(scaled, eps, &sp);
+    int count = 0;
     for (int i = 0; i < 2; i++) {
-        if (!sl.in[i])
+        if (!in[i])
             continue;
+        double side = touch ? 0.0 : (i == 0 ? -w : w);
+        double v[3] = { l[0] + side * d_s[0], l[1] + side * d_s[1], l[2] + side * d_s[2] };
         lane_hit h;
-        sphere_lanes_record(&sp, &lr, &sl, i, &h);
+        sphere_lanes_record(&sp, &lr, lane_clamp_t(t[i], &lr) + 0.0, v, i == 1, &h);
         isect_hit *hit = &out[count];
         lane_hit_store(&h, 0, hit);
+        if (touch) { /* the foot of the perpendicular, l/|l| (|l| = r only to ~eps/2) */
+            unit3(hit->normal, l);
+            for (int k = 0; k < 3; k++)
+                hit->point[k] = o_s[k] + hit->t * d_s[k];
+            hit->kind = ISECT_TOUCH;
+        }
         hit->t = pow2_scale(hit->t, t_shift) + 0.0;
         for (int k = 0; k < 3; k++)
             hit->point[k] = pow2_scale(hit->point[k], e);
@@ -253,16 +263,31 @@ int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
     if (!sphere_lanes_screen(&sp, &lr))
         return 0;
     sphere_lanes sl;
-    sphere_lanes_solve(&sp, &lr, &sl);
-    if (sl.slow)
+    sphere_lanes_solve(&sp, &lr, 0, &sl);
+    if (sl.plain_slow)
         return sphere_exact(s->data, ray, prm->eps, out);
+    /* Each crossing from the kernel where it decided it, from the exact
+     * path where not (both decide exactly, so they agree on which
+     * crossings exist; a decided crossing keeps the kernel's record, as in
+     * the batch). */
+    isect_hit exact[ISECT_MAX_HITS];
+    int exact_count = -1;
     int count = 0;
     for (int i = 0; i < 2; i++) {
-        if (!sl.in[i])
+        if (sl.decided[i]) {
+            if (sl.in[i]) {
+                lane_hit h;
+                sphere_lanes_record(&sp, &lr, sl.root[i].t, sl.root[i].v, i == 1, &h);
+                lane_hit_store(&h, 0, &out[count++]);
+            }
             continue;
-        lane_hit h;
-        sphere_lanes_record(&sp, &lr, &sl, i, &h);
-        lane_hit_store(&h, 0, &out[count++]);
+        }
+        if (exact_count < 0)
+            exact_count = sphere_exact(s->data, ray, prm->eps, exact);
+        int32_t kind = i == 0 ? ISECT_ENTER : ISECT_EXIT;
+        for (int k = 0; k < exact_count; k++)
+            if (exact[k].kind == kind)
+                out[count++] = exact[k];
     }
     return count;
 }
