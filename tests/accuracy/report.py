@@ -12,7 +12,7 @@ DEC_SHORT = {"outside": "o", "missing": "m", "kind": "k", "count": "c", "prim": 
 
 HEADER = ["primitive", "class", "rays", "hits",
           "t max", "t p99.9", "t closest max", "point max", "point p99.9", "point/obj max",
-          "|n|-1 max", "angle max", "angle p99.9", "decisions", "self-hit",
+          "norm-1 max", "angle max", "angle p99.9", "decisions", "self-hit",
           "TB t max", "TB t p99.9", "TB point max", "TB angle max", "TB decisions", "TB self-hit", "undecided"]
 
 
@@ -74,7 +74,7 @@ def table(cells: Sequence[Cell], markdown: bool = False) -> str:
 LEGEND = """\
 t: |t_lib - t_exact| / ulp(t_exact) over every hit both report (intersect_all_batch); "t closest": the
 closest-hit batch call.  point: exact distance of the reported point to the exact surface in ulps of
-max_k|P_k|; point/obj: in ulps of the object's own scale.  |n|-1: ulps of 1.0; angle: angle to the exact
+max_k|P_k|; point/obj: in ulps of the object's own scale.  norm-1: | |n| - 1 | in ulps of 1.0; angle: angle to the exact
 normal at the exact point, units of 2^-53 rad.  decisions: o = reported outside [tmin, tmax], m = missing,
 k = kind, c = count, p = prim, cl = closest-hit call.  self-hit (secondary rays): library re-hits at
 t|d| < 1e-9 size / of them real in exact geometry.  TB: the textbook double-precision code on the same

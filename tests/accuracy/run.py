@@ -5,7 +5,7 @@
     python -m tests.accuracy ...            (the same, from the repository root)
 
 --short (default): 50 rays per (primitive, class), about a minute on one core.
---full: 1000 rays per (primitive, class), run over --jobs processes.
+--full: 2000 rays per (primitive, class), about 20 min of CPU, run over --jobs processes.
 Exit status 0; the table marks values over the contract with *.
 """
 from __future__ import annotations
@@ -24,7 +24,7 @@ if __package__ in (None, ""):                     # run as a script: import the 
 from tests.accuracy import contract, harness, report  # noqa: E402
 
 SHORT_RAYS = 50
-FULL_RAYS = 1000
+FULL_RAYS = 2000
 
 
 def commit() -> str:
