@@ -32,6 +32,7 @@ import mpmath
 GOLDEN = Path(__file__).resolve().parents[1] / "golden"
 if str(GOLDEN) not in sys.path:
     sys.path.insert(0, str(GOLDEN))
+_WRITE_BYTECODE = sys.dont_write_bytecode
 sys.dont_write_bytecode = True          # keep tests/golden free of __pycache__
 
 import box  # noqa: E402
@@ -49,7 +50,7 @@ import transformed  # noqa: E402
 import triangle  # noqa: E402
 from exact import Real  # noqa: E402
 
-sys.dont_write_bytecode = False
+sys.dont_write_bytecode = _WRITE_BYTECODE
 
 # transformed.solve inverts the same 3x3 matrix (exactly, in Fractions) twice
 # per ray; memoising that pure function changes no result and saves a third
@@ -140,9 +141,10 @@ def _mesh_solve(shape: dict, r: "model.XRay", ctx: "model.Ctx") -> list:
     return hits
 
 
-def _solve_once(spec: dict, r: "model.XRay") -> RefResult:
+def _hits(spec: dict, r: "model.XRay", eps: Fraction) -> list:
+    """The golden solver's hits (world space), sorted by t then prim."""
     kind = spec["type"]
-    ctx = model.Ctx(Fraction(0) if kind in NO_EPS else EPS)
+    ctx = model.Ctx(eps)
     solver = _mesh_solve if kind == "mesh" else SOLVERS[kind]
     m = spec.get("transform")
     hits = transformed.solve(m, solver, spec, r, ctx) if m is not None else solver(spec, r, ctx)
@@ -150,22 +152,20 @@ def _solve_once(spec: dict, r: "model.XRay") -> RefResult:
     def order(a, b) -> int:
         c = exact.cmp(a.t, b.t) if a.t != b.t else 0
         return c if c else (a.prim > b.prim) - (a.prim < b.prim)
-    hits = sorted(hits, key=functools.cmp_to_key(order))
-    return RefResult(tuple(
-        RefHit(h.t, h.kind, h.prim, tuple(exact.mp(x) for x in h.normal), model.in_range(h.t, r, ctx))
-        for h in hits))
+    return sorted(hits, key=functools.cmp_to_key(order))
 
 
-def solve(spec: dict, org: Sequence[float], d: Sequence[float], tmin: float = 0.0,
-          tmax: float = math.inf) -> RefResult:
-    """Every exact crossing of the ray with the shape ``spec`` (golden format,
-    with an optional ``transform``: 16 numbers, row-major object-to-world)."""
-    r = to_xray(org, d, tmin, tmax)
+def _decided(spec: dict, r: "model.XRay", eps: Fraction) -> RefResult:
+    """Solve deciding exactly, with more digits while mpmath cannot separate values."""
     with exact.deciding_exactly():
         for digits in PRECISIONS:
             try:
                 with mpmath.workdps(digits):
-                    return _solve_once(spec, r)
+                    ctx = model.Ctx(eps)
+                    return RefResult(tuple(
+                        RefHit(h.t, h.kind, h.prim, tuple(exact.mp(x) for x in h.normal),
+                               model.in_range(h.t, r, ctx))
+                        for h in _hits(spec, r, eps)))
             except exact.PrecisionError:
                 continue
             except exact.DesignError as e:
@@ -173,17 +173,16 @@ def solve(spec: dict, org: Sequence[float], d: Sequence[float], tmin: float = 0.
     raise Undecided(f"not decided with {PRECISIONS[-1]} digits")
 
 
+def solve(spec: dict, org: Sequence[float], d: Sequence[float], tmin: float = 0.0,
+          tmax: float = math.inf) -> RefResult:
+    """Every exact crossing of the ray's line with the shape ``spec`` (golden
+    format, with an optional ``transform``: 16 numbers, row-major
+    object-to-world), each marked whether it lies in [tmin, tmax]."""
+    eps = Fraction(0) if spec["type"] in NO_EPS else EPS
+    return _decided(spec, to_xray(org, d, tmin, tmax), eps)
+
+
 def solve_eps0(spec: dict, org: Sequence[float], d: Sequence[float]) -> RefResult:
-    """The same with eps = 0 everywhere: an exactly tangent ray gives one TOUCH."""
-    r = to_xray(org, d, 0.0, math.inf)
-    kind = spec["type"]
-    solver = _mesh_solve if kind == "mesh" else SOLVERS[kind]
-    ctx = model.Ctx(Fraction(0))
-    with exact.deciding_exactly():
-        try:
-            m = spec.get("transform")
-            hits = transformed.solve(m, solver, spec, r, ctx) if m is not None else solver(spec, r, ctx)
-        except exact.DesignError as e:
-            raise Undecided(str(e)) from None
-    return RefResult(tuple(RefHit(h.t, h.kind, h.prim, tuple(exact.mp(x) for x in h.normal), True)
-                           for h in hits))
+    """The same with eps = 0 for every shape: an exactly tangent ray gives one
+    TOUCH, a ray off tangency by any amount two hits or none."""
+    return _decided(spec, to_xray(org, d, -math.inf, math.inf), Fraction(0))
