@@ -4,8 +4,8 @@
                                  [--class NAME ...] [--markdown] [--jobs N] [--seed S] [--worst]
     python -m tests.accuracy ...            (the same, from the repository root)
 
---short (default): 50 rays per (primitive, class), about a minute on one core.
---full: 2000 rays per (primitive, class), about 20 min of CPU, run over --jobs processes.
+--short (default): 50 rays per (primitive, class), 10-50 s on one core.
+--full: 2000 rays per (primitive, class), 8-20 min of CPU, run over --jobs processes.
 Exit status 0; the table marks values over the contract with *.
 """
 from __future__ import annotations
