@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Callable, Sequence
 
-from exact import NEAR, DesignError, Real, cmp, dot, qv, rel_gap, unit
+from exact import NEAR, Real, cmp, dot, qv, refuse, rel_gap, unit
 from model import INF, Ctx, Hit, XRay, case, opts, ray
 from plane import parallel
 
@@ -66,9 +66,9 @@ def _pick(cands: list[Cand], want_max: bool, ctx: Ctx, what: str) -> Cand | None
             continue
         if c.t == best.t:
             if not (ctx.exact and c.exact_in_double and best.exact_in_double):
-                raise DesignError(f"{what}: exact tie that doubles may not reproduce")
+                refuse(f"{what}: exact tie that doubles may not reproduce")
         elif rel_gap(c.t, best.t) < NEAR:
-            raise DesignError(f"{what}: near-tie between faces {c.prim} and {best.prim}")
+            refuse(f"{what}: near-tie between faces {c.prim} and {best.prim}")
     return best
 
 
@@ -79,11 +79,11 @@ def select(enter: list[Cand], exit_: list[Cand], ctx: Ctx) -> list[Hit]:
     if e is not None and x is not None:
         if e.t == x.t:
             if not (ctx.exact and e.exact_in_double and x.exact_in_double):
-                raise DesignError("entry == exit but doubles may not reproduce the tie")
+                refuse("entry == exit but doubles may not reproduce the tie")
             first = e if e.prim < x.prim else x
             return [Hit(e.t, first.normal, "touch", first.prim)]
         if rel_gap(e.t, x.t) < NEAR:
-            raise DesignError("entry and exit nearly equal")
+            refuse("entry and exit nearly equal")
         if cmp(e.t, x.t) > 0:
             return []
     hits = []
@@ -104,11 +104,11 @@ def clip_planes(planes: Sequence[tuple[Sequence[Fraction], Fraction]], r: XRay, 
         side_exact = ctx.exact and float_exact_dot_plus(n, r.org, d)
         if is_parallel(n):
             if side == 0 and not side_exact:
-                raise DesignError("origin exactly on a parallel plane, not exact in doubles")
+                refuse("origin exactly on a parallel plane, not exact in doubles")
             if side != 0 and not side_exact:
                 mag = sum((abs(a * b) for a, b in zip(n, r.org)), abs(d))
                 if abs(side) <= mag * Fraction(1, 10**9):
-                    raise DesignError("origin too close to a parallel plane")
+                    refuse("origin too close to a parallel plane")
             if side > 0:
                 return []
             continue

@@ -17,7 +17,9 @@ Finite cylinder p0-p1 (a = p1 - p0), axial coordinate s(t) = (x(t)-p0).a/|a|^2:
   open:   side hits with 0 <= s <= 1 (thin surface, outward radial normal);
   capped: the convex solid (infinite solid) n (0 <= s <= 1): cap at p0
           (prim 1, normal -a/|a|) and cap at p1 (prim 2, normal a/|a|),
-          entry/exit/ties/TOUCH as for a convex polyhedron (side prim 0).
+          entry/exit/ties/TOUCH as for a convex polyhedron (side prim 0);
+          the caps are parallel to the ray when |v.a| <= eps|v||a|, and then
+          constrain it by the origin's axial coordinate s(0).
 r = 0 or p0 == p1 (axis 0) is degenerate.
 """
 from __future__ import annotations
@@ -27,7 +29,7 @@ from typing import Sequence
 
 from convex import Cand, select
 from exact import (NEAR, DesignError, Real, cross, dot, eps_le, is_zero, mp, norm2, point_on_ray, q, qv,
-                   rel_gap, representable, scale, sqrt, sub, unit)
+                   refuse, rel_gap, representable, scale, sqrt, sub, unit)
 from model import INF, Ctx, Hit, XRay, case, opts, ray
 
 FAMILY = "cylinder"
@@ -79,10 +81,10 @@ def in_unit(s: Real, ctx: Ctx) -> bool:
     for bound in (Fraction(0), Fraction(1)):
         if s == bound:
             if not (ctx.exact and isinstance(s, Fraction)):
-                raise DesignError("hit exactly on a cylinder rim")
+                refuse("hit exactly on a cylinder rim")
             return True
         if rel_gap(s, bound) < NEAR:
-            raise DesignError("hit within 1e-12 of a cylinder rim")
+            refuse("hit within 1e-12 of a cylinder rim")
     return 0 <= mp(s) <= 1
 
 
@@ -114,16 +116,18 @@ def solve_finite(shape: dict, r: XRay, ctx: Ctx) -> list[Hit]:
         exit_.append(Cand(t2, 0, side.normal(t2), _exact(t2)))
     va = dot(r.dir, a)
     wa = dot(side.w, a)
-    if va == 0:
+    # the caps are parallel to the ray when |v.a| <= eps |v||a| (isect.h): they
+    # then constrain it by the origin's axial coordinate
+    if va == 0 or eps_le(va * va, ctx.eps ** 2 * norm2(r.dir) * side.a2, "cylinder cap parallel"):
         s0 = wa / side.a2
         if s0 == 0 or s0 == 1:
             if not ctx.exact:
-                raise DesignError("ray in a cap plane under an inexact transform")
+                refuse("ray in a cap plane under an inexact transform")
         if not 0 <= s0 <= 1:
             return []
     else:
         if abs(va) ** 2 <= norm2(r.dir) * side.a2 * Fraction(1, 10**12):
-            raise DesignError("ray nearly parallel to the caps")
+            refuse("ray nearly parallel to the caps")
         n1 = unit(a)
         t_p0, t_p1 = -wa / va, (side.a2 - wa) / va
         c0 = Cand(t_p0, 1, tuple(-x for x in n1), _exact(t_p0))

@@ -15,12 +15,20 @@ A value of type ``Real`` is either a Fraction (exact) or an mpmath ``mpf``
 decided by a hair: a comparison that 80 digits cannot separate, or an eps
 decision too close to its threshold.  The generator refuses such cases, so a
 disagreement with the library is never an artefact of the corpus design.
+
+Inside ``deciding_exactly()`` (the accuracy harness, tests/accuracy) the
+design refusals (``refuse``) return instead of raising and every such
+decision is taken exactly; only ``PrecisionError`` (the working precision
+``mpmath.mp.dps`` cannot separate two values) and the cases the contract
+leaves undefined still raise.  The corpus generator never enters that mode.
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 from fractions import Fraction
-from typing import Iterable, Sequence, Union
+from typing import Iterable, Iterator, Sequence, Union
 
 import mpmath
 
@@ -40,6 +48,36 @@ NEAR = Fraction(1, 10**12)
 
 class DesignError(Exception):
     """A case whose expected answer is not robustly decided (fix the case)."""
+
+
+class PrecisionError(DesignError):
+    """mpmath at the working precision cannot decide a sign or comparison.
+
+    Raised in both modes; the accuracy harness recomputes with more digits.
+    """
+
+
+_DECIDE_EXACTLY: contextvars.ContextVar[bool] = contextvars.ContextVar("decide_exactly", default=False)
+
+
+@contextlib.contextmanager
+def deciding_exactly() -> Iterator[None]:
+    """Within the block, ``refuse`` returns: decisions by a hair are taken exactly."""
+    token = _DECIDE_EXACTLY.set(True)
+    try:
+        yield
+    finally:
+        _DECIDE_EXACTLY.reset(token)
+
+
+def refuse(reason: str) -> None:
+    """Refuse a case decided by a hair (corpus design): raise DesignError.
+
+    Inside ``deciding_exactly()`` return instead, and the caller goes on to
+    the exact decision.
+    """
+    if not _DECIDE_EXACTLY.get():
+        raise DesignError(reason)
 
 
 # ----------------------------------------------------------------- scalars
@@ -95,22 +133,24 @@ def is_exact(x: Real) -> bool:
 
 
 def sign(x: Real) -> int:
-    """Sign of x.  An mpf (irrational) value must be clearly nonzero."""
+    """Sign of x.  An mpf (irrational) value must be clearly nonzero
+    (|x| >= 10^-(dps - 10), 10^-70 at the default 80 digits)."""
     if isinstance(x, Fraction):
         return (x > 0) - (x < 0)
-    if abs(x) < mpmath.mpf(10) ** -70:
-        raise DesignError(f"sign of an irrational quantity too close to 0: {x}")
+    if abs(x) < mpmath.mpf(10) ** -(mpmath.mp.dps - 10):
+        raise PrecisionError(f"sign of an irrational quantity too close to 0: {x}")
     return 1 if x > 0 else -1
 
 
 def cmp(a: Real, b: Real) -> int:
-    """Exact three-way comparison; refuses irrational near-ties."""
+    """Exact three-way comparison; refuses irrational near-ties (closer than
+    10^-(dps - 20) relative to max(|a|, |b|, 1): 10^-60 at 80 digits)."""
     if isinstance(a, Fraction) and isinstance(b, Fraction):
         return (a > b) - (a < b)
     d = mp(a) - mp(b)
     scale = max(abs(mp(a)), abs(mp(b)), mpmath.mpf(1))
-    if abs(d) <= scale * mpmath.mpf(10) ** -60:
-        raise DesignError(f"cannot separate {a} and {b} in 80 digits")
+    if abs(d) <= scale * mpmath.mpf(10) ** -(mpmath.mp.dps - 20):
+        raise PrecisionError(f"cannot separate {a} and {b} in {mpmath.mp.dps} digits")
     return 1 if d > 0 else -1
 
 
@@ -188,6 +228,8 @@ def eps_le(lhs: Fraction, rhs: Fraction, what: str, noise_scale: Fraction | None
     (a factor 2 on the unsquared quantities).  With rhs = 0 (eps = 0), a
     nonzero lhs must also stand well above floating-point noise relative to
     ``noise_scale`` (a squared magnitude of the same dimension).
+    Inside ``deciding_exactly()`` these refusals fall through to the exact
+    ``lhs <= rhs``.
     """
     if lhs < 0 or rhs < 0:
         raise ValueError("eps_le expects non-negative quantities")
@@ -195,9 +237,9 @@ def eps_le(lhs: Fraction, rhs: Fraction, what: str, noise_scale: Fraction | None
         return True
     if rhs == 0:
         if noise_scale is not None and lhs < noise_scale * Fraction(1, 10**16):
-            raise DesignError(f"{what}: eps = 0 and the test quantity is within noise")
+            refuse(f"{what}: eps = 0 and the test quantity is within noise")
         return False
     ratio = lhs / rhs
     if Fraction(1, 4) <= ratio <= 4:
-        raise DesignError(f"{what}: eps decision too close to its threshold (ratio {float(ratio):.3g})")
-    return ratio < 1
+        refuse(f"{what}: eps decision too close to its threshold (ratio {float(ratio):.3g})")
+    return ratio <= 1

@@ -12,8 +12,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Sequence
 
-from exact import (NEAR, DesignError, Real, cmp, point_on_ray, q, qv, rel_gap, representable,
-                   to_double)
+from exact import NEAR, Real, cmp, point_on_ray, q, qv, refuse, rel_gap, representable, to_double
 
 EPS_DEFAULT = 1e-12
 INF = math.inf
@@ -70,10 +69,10 @@ def _bound_ok(t: Real, bound: Fraction | float, want: int, ctx: Ctx, what: str) 
     if c == 0:
         # A hit exactly at tmin/tmax: the library must compute t exactly.
         if not (isinstance(t, Fraction) and representable(t) and ctx.exact):
-            raise DesignError(f"hit at t = {what} is not exactly computable")
+            refuse(f"hit at t = {what} is not exactly computable")
         return True
     if rel_gap(t, bound) < NEAR:
-        raise DesignError(f"hit within 1e-12 (relative) of {what}: the library's rounding could decide")
+        refuse(f"hit within 1e-12 (relative) of {what}: the library's rounding could decide")
     return c == want
 
 

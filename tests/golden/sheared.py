@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
-from exact import DesignError, U, q
+from exact import U, q, refuse
 
 P2 = tuple[Fraction, Fraction]
 
@@ -155,13 +155,13 @@ def winding_sheared(verts: Sequence[Sequence[Fraction]], org: Sequence[Fraction]
         elif not all_exact:
             err = bound(i) * (abs(r[0]) + abs(r[1])) + bound((i + 1) % n) * (abs(p[0]) + abs(p[1]))
             if abs(det) <= 1000 * err:
-                raise DesignError("edge determinant too close to 0 for an inexact projection")
+                refuse("edge determinant too close to 0 for an inexact projection")
     if ties and not all_exact:
-        raise DesignError("exact tie in the sheared frame but the projection is inexact in doubles")
+        refuse("exact tie in the sheared frame but the projection is inexact in doubles")
     if not all_exact:
         for i, p in enumerate(pts):
             if p[1] != 0 and abs(p[1]) <= 1000 * bound(i):
-                raise DesignError("vertex too close to the test line for an inexact projection")
+                refuse("vertex too close to the test line for an inexact projection")
     return w
 
 
