@@ -127,6 +127,24 @@ static ALWAYS_INLINE void lane_hit_to_world(const isect_xform *x, lane_hit *h)
         h->point[i] = p[i];
 }
 
+/*
+ * n, nearly unit (|n|^2 = 1 + e, |e| <= 2^-20), made unit to within about
+ * u: one Newton step for 1/sqrt, n (3 - |n|^2)/2 = n (1 - e/2 + O(e^2)),
+ * with |n|^2 summed exactly enough (exact squares, compensated sum: e is
+ * right to ~u^2), so that only the final products round. No square root,
+ * no division.
+ */
+static ALWAYS_INLINE void lane_unit_newton(vd n[3])
+{
+    vdd p0 = two_prod(n[0], n[0]), p1 = two_prod(n[1], n[1]), p2 = two_prod(n[2], n[2]);
+    vdd s = two_sum(p0.hi, p1.hi);
+    vdd s2 = two_sum(s.hi, p2.hi);
+    vd lo = vd_add(vd_add(s.lo, s2.lo), vd_add(vd_add(p0.lo, p1.lo), p2.lo));
+    vd scale = vd_sub(vd_sub(vd_set1(1.5), vd_mul(vd_set1(0.5), s2.hi)), vd_mul(vd_set1(0.5), lo));
+    for (int k = 0; k < 3; k++)
+        n[k] = vd_mul(n[k], scale);
+}
+
 /* The number of set bits of a lane mask (LANE_W <= 8). */
 static ALWAYS_INLINE int lane_count(unsigned bits)
 {

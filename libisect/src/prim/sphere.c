@@ -236,10 +236,16 @@ static int sphere_exact(const double *data, const isect_ray *ray, double eps,
         sphere_lanes_record(&sp, &lr, lane_clamp_t(t[i], &lr) + 0.0, v, i == 1, &h);
         isect_hit *hit = &out[count];
         lane_hit_store(&h, 0, hit);
-        if (touch) { /* the foot of the perpendicular, l/|l| (|l| = r only to ~eps/2) */
+        if (touch) {
+            /* The foot of the perpendicular, c + l (snapped as the
+             * crossings are: l is accurate where o + t d would lose the
+             * small coordinates) or o + t d, and the normal l/|l| (|l| = r
+             * only to ~eps/2, so divided by its length, then renormalised). */
             unit3(hit->normal, l);
+            lane_unit_newton(hit->normal);
+            int snap = sp.snap_scale < max_abs3(o_s) + fabs(hit->t) * max_abs3(d_s);
             for (int k = 0; k < 3; k++)
-                hit->point[k] = o_s[k] + hit->t * d_s[k];
+                hit->point[k] = snap ? scaled[k] + l[k] : o_s[k] + hit->t * d_s[k];
             hit->kind = ISECT_TOUCH;
         }
         hit->t = pow2_scale(hit->t, t_shift) + 0.0;

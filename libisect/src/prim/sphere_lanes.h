@@ -93,6 +93,17 @@ static ALWAYS_INLINE vd max_abs3v(vd a, vd b, vd c)
     return vd_max(vd_abs(a), vd_max(vd_abs(b), vd_abs(c)));
 }
 
+/* x0 y0 + x1 y1 + x2 y2 as dd: exact products, compensated sum; |error|
+ * <= 12u^2 sum |x_k y_k|. */
+static ALWAYS_INLINE vdd dot3_dd(vd x0, vd x1, vd x2, vd y0, vd y1, vd y2)
+{
+    vdd p0 = two_prod(x0, y0), p1 = two_prod(x1, y1), p2 = two_prod(x2, y2);
+    vdd s = two_sum(p0.hi, p1.hi);
+    vdd s2 = two_sum(s.hi, p2.hi);
+    s2.lo = vd_add(vd_add(s.lo, s2.lo), vd_add(vd_add(p0.lo, p1.lo), p2.lo));
+    return s2;
+}
+
 /* The kernel's range for the ray (see the top of the file). */
 static ALWAYS_INLINE vm sphere_ray_in_range(const lane_ray *ray)
 {
@@ -154,6 +165,7 @@ typedef struct sphere_root {
 /* The plain quantities shared by the refinements. */
 typedef struct sphere_plain {
     vdd f[3];   /* o - c exactly */
+    vd  dd;     /* D = d.d, plain */
     vd  d_up;   /* D rounded up: >= d.d */
     vm  cross;  /* two crossings, certainly */
     vm  slow;   /* maybe tangent, or out of range: the exact path decides */
@@ -168,6 +180,7 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
         pl->f[k] = two_sum(ray->org[k], vd_set1(-sp->c[k]));
     const vd f0 = pl->f[0].hi, f1 = pl->f[1].hi, f2 = pl->f[2].hi;
     vd dd = vd_add(vd_add(vd_mul(d[0], d[0]), vd_mul(d[1], d[1])), vd_mul(d[2], d[2]));
+    pl->dd = dd;
     pl->d_up = vd_mul(dd, vd_set1(1.0 + 4.0 * SPHERE_LANES_U));
     vd b = vd_add(vd_add(vd_mul(f0, d[0]), vd_mul(f1, d[1])), vd_mul(f2, d[2]));
     vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
@@ -257,21 +270,41 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
     vd pp = vd_add(vd_add(p0, p1), p2);
     vd e_p = vd_add(vd_mul(vd_mul(vd_set1(4.0), u), vd_add(vd_add(vd_abs(p0), vd_abs(p1)), vd_abs(p2))),
                     vd_mul(vd_set1(1.0 + 2.0 * SPHERE_LANES_U), vd_mul(d_max, l_sum)));
+    /* The step: Newton's R/(2P), times (1 + c), c = D R/(4 P^2), the
+     * quadratic's own curvature term (the exact small root of R + 2P h +
+     * D h^2 = 0 is -R/(2P) (1 + c + 2c^2 + ...)): the residual it leaves is
+     * of third order, D sigma^2 |c| (2 + |c|), so even a start off by u|t|
+     * lands within a tiny fraction of an ulp, and v at the root is accurate
+     * to u r for a sphere 2^40 radii away. */
     vd inv_2p = vd_div(vd_set1(0.5), pp);
-    vd step = vd_mul(r, inv_2p);
+    vd newton = vd_mul(r, inv_2p);
+    vd curv = vd_mul(vd_mul(pl->dd, newton), inv_2p);
+    vd step = vd_add(newton, vd_mul(newton, curv));
     vd t = vd_sub(t0, step);
 
+    /* eta >= |Q| at t0 - step (before t's rounding): the curvature term,
+     * the errors of R and P, and the roundings of the step (16u|step||P|). */
     vd up = vd_set1(1.0 + 8.0 * SPHERE_LANES_U);
-    vd step_abs = vd_mul(vd_abs(step), up); /* >= the exact R/(2P) step's size */
+    vd step_abs = vd_mul(vd_abs(step), up);
+    vd c_abs = vd_abs(curv);
     vd inv_2p_abs = vd_mul(vd_abs(inv_2p), up);
     vd shortfall = vd_mul(vd_mul(vd_add(e_p, vd_mul(pl->d_up, step_abs)), vd_set1(2.0)), inv_2p_abs);
-    vd eta = vd_add(vd_add(vd_mul(pl->d_up, vd_mul(step_abs, step_abs)), e_r),
-                    vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(u, vd_abs(pp))), step_abs));
+    vd curvature = vd_mul(vd_mul(pl->d_up, vd_mul(step_abs, step_abs)),
+                          vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs)));
+    vd eta = vd_add(vd_add(curvature, e_r),
+                    vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(vd_set1(16.0 * SPHERE_LANES_U), vd_abs(pp))),
+                           step_abs));
     vm kantorovich = vd_le(vd_mul(vd_mul(vd_set1(4.0), pl->d_up), eta),
                            vd_mul(vd_set1(2.25 * (1.0 - 8.0 * SPHERE_LANES_U)), vd_mul(pp, pp)));
-    rt->ok = vm_and(vd_le(shortfall, vd_set1(0.25)), kantorovich);
-    rt->err = vd_mul(vd_add(vd_mul(vd_mul(vd_set1(8.0 / 3.0), eta), inv_2p_abs), vd_mul(u, vd_abs(t))),
-                     up);
+    vd rho = vd_mul(vd_mul(vd_set1(8.0 / 3.0), eta), inv_2p_abs); /* |root - (t0 - step)| */
+    /* v = f + (t0 - step) d is then within rho |d| of the vector to the
+     * exact hit: the normal is certified when that is below u r (a grazing
+     * ray's is not: it defers). */
+    vm normal_ok = vd_le(vd_mul(vd_mul(rho, d_max), vd_set1(2.0)),
+                         vd_set1(SPHERE_LANES_U * sp->r));
+    rt->ok = vm_and(vm_and(vd_le(shortfall, vd_set1(0.25)), vd_le(c_abs, vd_set1(0.0625))),
+                    vm_and(kantorovich, normal_ok));
+    rt->err = vd_mul(vd_add(rho, vd_mul(u, vd_abs(t))), up);
     rt->t = t;
     rt->enter = vd_lt(pp, vd_zero());
     for (int k = 0; k < 3; k++)
@@ -293,24 +326,21 @@ static ALWAYS_INLINE vm sphere_root_out(const sphere_root *rt, const lane_ray *r
 /* The record of a crossing at t (entry or exit) with v = f + t d: the unit
  * outward normal v/|v|, the point — snapped onto the surface, c + r n,
  * where that is the more accurate placement (|c| + r below |o| + |t d|),
- * else o + t d — prim -1 and the kind. |v| = r up to a few u: v/r, then one
- * Newton step towards unit length, n (3 - |n|^2)/2, leaves |n| within
- * ~2.5u of 1 without a square root or a division. */
+ * else o + t d — prim -1 and the kind. |v| = r up to a few u: v/r, made
+ * unit by lane_unit_newton (no square root, no division). */
 static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_ray *ray, vd t,
                                               const vd v[3], vm exit, lane_hit *h)
 {
     const vd *d = ray->dir;
     vd inv_r = vd_set1(sp->inv_r);
-    vd n0 = vd_mul(v[0], inv_r), n1 = vd_mul(v[1], inv_r), n2 = vd_mul(v[2], inv_r);
-    vd nn = vd_add(vd_add(vd_mul(n0, n0), vd_mul(n1, n1)), vd_mul(n2, n2));
-    vd scale = vd_sub(vd_set1(1.5), vd_mul(vd_set1(0.5), nn));
+    vd n[3] = { vd_mul(v[0], inv_r), vd_mul(v[1], inv_r), vd_mul(v[2], inv_r) };
+    lane_unit_newton(n);
     h->t = t;
     vd o_max = max_abs3v(ray->org[0], ray->org[1], ray->org[2]);
     vd d_max = max_abs3v(d[0], d[1], d[2]);
     vm snap = vd_lt(vd_set1(sp->snap_scale), vd_add(o_max, vd_mul(vd_abs(t), d_max)));
-    const vd n[3] = { n0, n1, n2 };
     for (int k = 0; k < 3; k++) {
-        vd nk = vd_add(vd_mul(n[k], scale), vd_zero()); /* + 0: never -0 */
+        vd nk = vd_add(n[k], vd_zero()); /* + 0: never -0 */
         h->normal[k] = nk;
         vd snapped = vd_add(vd_set1(sp->c[k]), vd_mul(vd_set1(sp->r), nk));
         vd along = vd_add(ray->org[k], vd_mul(t, d[k]));
