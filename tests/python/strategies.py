@@ -4,7 +4,9 @@ sets of boxes). None of it is used by the package itself."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Any
 
 import isect
 import numpy as np
@@ -248,3 +250,157 @@ def one_of_each() -> list[isect.Shape]:
         isect.Ellipsoid([0, 0, 0], [1, 2, 0.5]),
         isect.Quadric([1, 1, 1, 0, 0, 0, 0, 0, 0, -1]),
     ]
+
+
+# ------------------------------------------------- arguments in every form
+
+#: Ints at the edges of the float64 conversion: beyond 2**53 (rounded), the
+#: int64 and uint64 ranges, the largest finite doubles, and beyond (overflow).
+EDGE_INTS = [
+    2**53 + 1,
+    -(2**53) - 3,
+    2**63 - 1,
+    2**63,
+    2**63 + 1025,
+    2**64 - 1,
+    2**64 + 3,
+    -(2**70) - 1,
+    2**1023 * 3 // 2,
+    2**1024 - 2**970,
+    2**1024,
+    -(10**400),
+]
+
+
+def number_likes() -> st.SearchStrategy[object]:
+    """Anything a caller might pass as one number: Python floats (NaN, inf,
+    -0.0, subnormals), ints (huge ones too), bools, numpy scalars of several
+    types, complex numbers, strings, None."""
+    return st.one_of(
+        st.floats(),
+        st.integers(),
+        st.sampled_from(EDGE_INTS),
+        st.booleans(),
+        st.floats().map(np.float64),
+        st.floats(width=32).map(np.float32),
+        st.integers(-(2**63), 2**63 - 1).map(np.int64),
+        st.booleans().map(np.bool_),
+        st.complex_numbers(max_magnitude=10, allow_nan=False),
+        st.complex_numbers(max_magnitude=10, allow_nan=False).map(np.complex128),
+        st.sampled_from(["1.5", "x", "", b"2", None]),
+    )
+
+
+def _nearest_int(x: float) -> int | float:
+    """The int nearest x; x itself if it is not finite."""
+    return round(x) if math.isfinite(x) else x
+
+
+def _element_form(draw: st.DrawFn, x: float) -> object:
+    """One coordinate as a float, an int near it, or a numpy scalar."""
+    kind = draw(st.sampled_from(["float", "int", "float64", "float32", "int64", "bool"]))
+    if kind == "float":
+        return x
+    if kind == "int":
+        return _nearest_int(x)
+    if kind == "float64":
+        return np.float64(x)
+    if kind == "float32":
+        with np.errstate(over="ignore"):
+            return np.float32(x)
+    if kind == "int64" and abs(x) < 2**62:
+        return np.int64(round(x))
+    return bool(x)
+
+
+@st.composite
+def vector_forms(draw: st.DrawFn, v: np.ndarray) -> object:
+    """The 3-vector v as callers pass one: a list or tuple of floats, ints or
+    numpy scalars, or an array (float64 contiguous, strided, read-only,
+    float32, int, big-endian, object, (1, 3))."""
+    plain = ["list", "tuple", "ints", "mixed list", "mixed tuple", "array", "strided", "read-only"]
+    other = ["float32", "int64", "big-endian", "object", "row"]
+    form = draw(st.sampled_from(plain if draw(st.integers(0, 3)) else other))
+    values = [float(x) for x in v]
+    if form == "list":
+        return values
+    if form == "tuple":
+        return tuple(values)
+    if form == "ints":
+        return [_nearest_int(x) for x in values]
+    if form in ("mixed list", "mixed tuple"):
+        mixed = [_element_form(draw, x) for x in values]
+        return mixed if form == "mixed list" else tuple(mixed)
+    if form == "array":
+        return np.array(values)
+    if form == "strided":
+        return np.repeat(np.array(values), 2)[::2]
+    if form == "read-only":
+        a = np.array(values)
+        a.flags.writeable = False
+        return a
+    if form == "big-endian":
+        return np.array(values, dtype=">f8")
+    if form == "row":
+        return np.array([values])
+    if form == "int64":
+        return np.array([_nearest_int(x) if abs(x) < 2**62 else 0 for x in values], dtype=np.int64)
+    with np.errstate(over="ignore"):
+        return np.array(values).astype(np.float32 if form == "float32" else object)
+
+
+def malformed_vectors() -> st.SearchStrategy[object]:
+    """Ray arguments that are not one good 3-vector: 3 odd numbers, too few
+    or too many, scalars, strings, nested lists, empty and batch arrays,
+    0-d arrays."""
+    return st.one_of(
+        st.lists(number_likes(), min_size=3, max_size=3),
+        st.lists(number_likes(), min_size=3, max_size=3).map(tuple),
+        st.lists(st.floats(-5, 5), min_size=0, max_size=5).filter(lambda v: len(v) != 3),
+        number_likes(),
+        st.sampled_from(["abc", "", [], (), [[0.0, 0.0, 1.0]], [[0.0], [0.0], [1.0]], {}]),
+        st.sampled_from(
+            [
+                np.zeros(0),
+                np.zeros((0, 3)),
+                np.zeros((2, 3)),
+                np.ones((3, 1)),
+                np.array(1.0),
+                np.array([1.0, 2.0, 3.0], dtype=complex),
+                np.array([True, False, True]),
+            ]
+        ),
+    )
+
+
+@st.composite
+def ray_arguments(draw: st.DrawFn, sample: Sample) -> tuple[Any, Any, dict[str, Any]]:
+    """(origin, direction, keyword arguments) for ``Shape.intersect``: a ray
+    aimed at the sample, a ray with NaN, infinity or a zero direction, or
+    malformed arguments, each in any of the forms callers use; tmin and tmax
+    left out or given as numbers or arrays of any kind."""
+    origin, direction = draw(aimed_rays(sample))
+    special = [np.nan, np.inf, -np.inf, 0.0, -0.0, 5e-324, 1e308]
+    if draw(st.integers(0, 4)) == 0:  # a bad (or odd) coordinate somewhere
+        which = draw(st.sampled_from(["origin", "direction"]))
+        v = (origin if which == "origin" else direction).copy()
+        v[draw(st.integers(0, 2))] = draw(st.sampled_from(special))
+        origin, direction = (v, direction) if which == "origin" else (origin, v)
+    if draw(st.integers(0, 9)) == 0:
+        direction = np.zeros(3)
+    o = draw(malformed_vectors()) if draw(st.integers(0, 5)) == 0 else draw(vector_forms(origin))
+    d = draw(malformed_vectors()) if draw(st.integers(0, 5)) == 0 else draw(vector_forms(direction))
+    kwargs: dict[str, Any] = {}
+    bound = st.one_of(
+        st.floats(),
+        st.integers(-10, 100),
+        st.sampled_from(EDGE_INTS),
+        st.floats(-10, 100).map(np.float64),
+        st.floats(-10, 100, width=32).map(np.float32),
+        st.booleans(),
+        st.sampled_from([np.array(1.0), np.array([0.0, 1.0]), "1", None, 1j]),
+    )
+    for name in ("tmin", "tmax"):
+        if draw(st.booleans()):
+            kwargs[name] = draw(bound)
+    return o, d, kwargs

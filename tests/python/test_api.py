@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import pickle
 import re
+import struct
 import threading
 import time
 
@@ -12,6 +13,7 @@ import isect
 import numpy as np
 import pytest
 from conftest import ROOT
+from meshes import icosphere
 from strategies import one_of_each
 
 SPHERE = isect.Sphere([0.0, 0.0, 0.0], 1.0)
@@ -134,6 +136,30 @@ def test_intersect_all_returns_hits() -> None:
     assert SPHERE.intersect_all([0, 0, -5], [0, 1, 0]) == []
     assert len(SPHERE.intersect_all([0, 0, -5], [0, 0, 1], tmin=4.5, tmax=10)) == 1
     assert len(SPHERE.intersect_all(np.array([0, 0, -5.0]), (0, 0, 1))) == 2
+
+
+@pytest.mark.parametrize(
+    "shape",
+    [*one_of_each(), isect.Mesh(*icosphere(1)), SPHERE.transformed(np.diag([2.0, 1, 3, 1]))],
+    ids=lambda s: type(s).__name__,
+)
+def test_intersect_all_holds_the_batch_records(shape: isect.Shape) -> None:
+    """intersect_all's Hit tuples hold, bit for bit, the records that
+    intersect_all_batch gives for the same ray, as Python floats, an int and
+    a HitKind."""
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        origin = rng.normal(size=3) * 4
+        direction = rng.normal(size=3) - origin
+        hits = shape.intersect_all(origin, direction)
+        offsets, records = shape.intersect_all_batch(origin, direction)
+        assert len(hits) == offsets[1] == len(records)
+        for hit, record in zip(hits, records, strict=True):
+            floats = (hit.t, *hit.point, *hit.normal, *hit.uv)
+            assert struct.pack("=9d2i", *floats, hit.prim, hit.kind) == record.tobytes()
+            assert all(type(x) is float for x in floats) and type(hit.prim) is int
+            assert type(hit.kind) is isect.HitKind
+            assert len(hit.point) == len(hit.normal) == 3 and len(hit.uv) == 2
 
 
 def test_intersect_all_many_hits_grow_the_buffer() -> None:

@@ -16,6 +16,7 @@ import copy
 import math
 import struct
 import threading
+from collections.abc import Sequence
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
@@ -81,9 +82,64 @@ class _Scratch(threading.local):
 _scratch = _Scratch()
 _NULL = ffi.NULL
 _c_intersect = lib.isect_intersect
+_c_intersect_batch = lib.isect_intersect_batch
+_new = ffi.new
+_from_buffer = ffi.from_buffer
 _pack_ray = _RAY_STRUCT.pack_into
 _unpack_hit = _HIT_STRUCT.unpack_from
 _tuple_new = tuple.__new__
+
+#: The number types that the one-ray fast path of Shape.intersect hands to cffi
+#: itself: for these cffi's C double is the float64 that numpy makes of them
+#: (the same value; for a large int, both the correctly rounded one). Lists and
+#: tuples of them and float64 arrays of shape (3,) take the fast path; any
+#: other input takes the general path.
+_PLAIN_NUMBERS = frozenset((float, int, np.float64))
+_F8 = np.dtype(np.float64)
+
+
+def _plain_vector(v: object) -> Sequence[float] | None:
+    """The 3 numbers of ``v`` if it is a list or tuple of 3 plain numbers or a
+    native float64 array of shape (3,); None for anything else."""
+    if type(v) is list or type(v) is tuple:
+        if len(v) == 3 and (
+            type(v[0]) in _PLAIN_NUMBERS
+            and type(v[1]) in _PLAIN_NUMBERS
+            and type(v[2]) in _PLAIN_NUMBERS
+        ):
+            return v
+    elif type(v) is np.ndarray and v.shape == (3,) and v.dtype == _F8:
+        return v.tolist()  # type: ignore[no-any-return]
+    return None
+
+
+def _closest_one(c: Any, origin: object, direction: object, tmin: object, tmax: object) -> Any:
+    """The fast path of :meth:`Shape.intersect`: one valid ray, default options.
+
+    The ray goes straight into an ``isect_ray`` and through the C call of the
+    general path (``isect_intersect_batch``, n = 1), and its record is returned
+    as the general path returns it: a ``HIT_DTYPE`` record viewing a fresh
+    writable 0-d array. Returns None for any other input (a batch, another
+    number type, a bad ray), which the general path then handles, errors
+    included. Nothing is shared between calls, so it is reentrant.
+    """
+    if type(tmin) not in _PLAIN_NUMBERS or type(tmax) not in _PLAIN_NUMBERS:
+        return None
+    org = _plain_vector(origin)
+    if org is None:
+        return None
+    dirn = _plain_vector(direction)
+    if dirn is None:
+        return None
+    try:
+        ray = _new("isect_ray *", (org, dirn, tmin, tmax))
+    except OverflowError:  # an int beyond the float range
+        return None
+    out = bytearray(_HIT_SIZE)
+    hit = _from_buffer("isect_hit *", out)
+    if _c_intersect_batch(c, ray, 1, _NULL, hit) < 0 or hit.kind == _INVALID:
+        return None
+    return np.ndarray((), HIT_DTYPE, out)[()]
 
 
 class Shape:
@@ -229,7 +285,22 @@ class Shape:
             A ``HIT_DTYPE`` array of the broadcast batch shape, or a single
             ``HIT_DTYPE`` record when origins and directions are both (3,).
             Rays that hit nothing have kind MISS, t = +inf, prim = -1.
+
+        One ray given as plain numbers (lists or tuples of 3 floats or ints,
+        or float64 arrays of shape (3,)), with the default options, goes
+        straight to the C call; the result is the same.
         """
+        if (
+            eps is None
+            and cull_back is False
+            and any_hit is False
+            and threads is None
+            and type(errors) is str
+            and errors == "raise"
+        ):
+            record = _closest_one(self._c, origins, directions, tmin, tmax)
+            if record is not None:
+                return record
         rays, shape = make_rays(origins, directions, tmin, tmax)
         hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
         return hits.reshape(shape)[()] if shape == () else hits.reshape(shape)
@@ -305,8 +376,8 @@ class Shape:
             raise error_for(n, f"{type(self).__name__}.intersect_all")
         out = []
         for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
-            v = _unpack_hit(hit_bytes, offset)
-            out.append(_tuple_new(Hit, (v[0], v[1:4], v[4:7], v[7:9], v[9], _KINDS[v[10]])))
+            t, px, py, pz, nx, ny, nz, u, v, prim, kind = _unpack_hit(hit_bytes, offset)
+            out.append(_tuple_new(Hit, (t, (px, py, pz), (nx, ny, nz), (u, v), prim, _KINDS[kind])))
         return out
 
     def intersect_all_batch(
