@@ -67,11 +67,11 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 /* The one place the version is defined; Makefile and meson.build read it. */
 #define ISECT_VERSION_MAJOR 1
-#define ISECT_VERSION_MINOR 0
+#define ISECT_VERSION_MINOR 1
 #define ISECT_VERSION_PATCH 0
 #define ISECT_VERSION \
     (ISECT_VERSION_MAJOR * 10000 + ISECT_VERSION_MINOR * 100 + ISECT_VERSION_PATCH)
-#define ISECT_VERSION_STRING "1.0.0"
+#define ISECT_VERSION_STRING "1.1.0"
 /* ABI version: the soname's number (libisect.so.1). Changes only if an
  * existing function or struct layout ever changes, which the ABI policy
  * forbids; minor releases only add. */
@@ -480,6 +480,27 @@ ISECT_API int isect_contains(const isect_shape *shape, const double p[3]);
  * Returns the number inside, or an error (nothing written). */
 ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p, int64_t n,
                                        uint8_t *inside);
+
+/* -------------------------------------------------------- secondary rays */
+
+/* A ray leaving shape's surface at hit (a record this library returned for
+ * shape, in world space) in direction dir — a reflection, a refraction, a
+ * shadow ray. out->org is hit->point moved along the hit's normal by the
+ * fewest whole ulps of its largest coordinate (1, 2, 4, ...) that put it
+ * strictly on the side of the surface dir points into (in front of the
+ * normal when dir.normal >= 0, behind it otherwise), as the shape's exact
+ * side test decides it in object space (for a closed mesh, its exact
+ * containment test must agree too); out->dir = dir, out->tmin = 0,
+ * out->tmax = +INFINITY. Because crossings are decided exactly against
+ * tmin = 0, intersecting out never finds the surface it leaves at t ~ 0, and
+ * it still finds any other surface more than a few ulps away.
+ * ISECT_OK; ISECT_E_ARG for NULL arguments, a hit kind other than ENTER,
+ * EXIT or TOUCH, a zero normal or a mesh face index out of range;
+ * ISECT_E_NONFINITE for NaN/Inf in hit or dir; ISECT_E_DEGENERATE for a
+ * zero dir, or when no offset leaves the surface (a degenerate shape, a
+ * point that is not near the surface). Added in 1.1. */
+ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit,
+                              const double dir[3], isect_ray *out);
 
 #ifdef __cplusplus
 }

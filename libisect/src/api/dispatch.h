@@ -52,6 +52,15 @@ int shape_is_solid(const shape_family *f, const isect_shape *s);
  * transform takes it out of the finite doubles. */
 int shape_point_inside(const shape_family *f, const isect_shape *s, const double p[3]);
 
+/* The exact side (prim/prim.h) of a finite world-space point, in the
+ * shape's object space: -1, 0, +1, or ISECT_E_NONFINITE if the transform
+ * takes it out of the finite doubles. */
+int shape_point_side(const shape_family *f, const isect_shape *s, const double p[3],
+                     int32_t prim);
+
+/* 1 when prim names a part of s that a hit can have (a mesh face). */
+int shape_prim_valid(const isect_shape *s, int32_t prim);
+
 /* n object-space records of shape s to world space (nothing without a
  * transform). */
 static inline void shape_hits_to_world(const isect_shape *s, isect_hit *hits, int64_t n)

@@ -42,6 +42,8 @@ struct shape_family {
     enum solidity solidity;
     int uses_n;     /* isect_shape.n carries a count */
     int uses_flags; /* isect_shape.flags carries a rule or ISECT_CAPPED */
+    /* The exact side of an object-space point (prim/prim.h). */
+    int (*side)(const isect_shape *s, const double p[3], int32_t prim);
 };
 
 /* The two query paths of the analytic shapes, over their bounded kernel. */
@@ -96,10 +98,10 @@ static int analytic_hit_first(const shape_family *f, const isect_shape *s,
 
 #define FAMILY(X, solidity, uses_n, uses_flags)                                 \
     { X##_check, X##_hits, X##_contains, analytic_hits_all, analytic_hit_first, \
-      NULL, solidity, uses_n, uses_flags }
+      NULL, solidity, uses_n, uses_flags, X##_side_test }
 #define THIN_FAMILY(X, uses_n, uses_flags)                                      \
     { X##_check, X##_hits, NULL, analytic_hits_all, analytic_hit_first,         \
-      NULL, SURFACE_THIN, uses_n, uses_flags }
+      NULL, SURFACE_THIN, uses_n, uses_flags, X##_side_test }
 
 /* The mesh's queries (mesh/mesh.h) under the family table's signatures. */
 static int64_t mesh_family_hits_all(const shape_family *f, const isect_shape *s,
@@ -137,7 +139,7 @@ static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
     [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_family_hits_all,
                              mesh_family_hit_first, mesh_family_first_batch,
-                             SURFACE_SOLID_IF_CLOSED, 0, 0 },
+                             SURFACE_SOLID_IF_CLOSED, 0, 0, mesh_side_test },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
@@ -220,6 +222,25 @@ int shape_point_inside(const shape_family *f, const isect_shape *s, const double
     if (!all_finite(q, 3))
         return ISECT_E_NONFINITE;
     return f->contains(s, q);
+}
+
+int shape_point_side(const shape_family *f, const isect_shape *s, const double p[3],
+                     int32_t prim)
+{
+    if (s->xform == NULL)
+        return f->side(s, p, prim);
+    double q[3];
+    xform_point_to_object(s->xform, p, q);
+    if (!all_finite(q, 3))
+        return ISECT_E_NONFINITE;
+    return f->side(s, q, prim);
+}
+
+int shape_prim_valid(const isect_shape *s, int32_t prim)
+{
+    if (s->type == ISECT_MESH)
+        return prim >= 0 && prim < s->mesh->face_count;
+    return 1;
 }
 
 ISECT_API int isect_intersect(const isect_shape *shape, const isect_ray *ray,

@@ -144,6 +144,20 @@ void xp_mul(xp *out, const xp *a, const xp *b)
     }
 }
 
+void xp_diff(xp *x, double a, double b)
+{
+    double s, e;
+    two_sum(a, -b, &s, &e);
+    xp_set2(x, s, e);
+}
+
+void xp_add_mul(xp *acc, const xp *a, const xp *b)
+{
+    xp prod;
+    xp_mul(&prod, a, b);
+    xp_add(acc, acc, &prod);
+}
+
 int xp_sign(const xp *x)
 {
     if (x->n == 0)

@@ -44,6 +44,10 @@ void xp_sub(xp *out, const xp *a, const xp *b);
 void xp_scale(xp *out, const xp *a, double b);
 /* out = a * b (exact; out must differ from a and b). */
 void xp_mul(xp *out, const xp *a, const xp *b);
+/* x = a - b (exact). */
+void xp_diff(xp *x, double a, double b);
+/* acc = acc + a * b (exact). */
+void xp_add_mul(xp *acc, const xp *a, const xp *b);
 /* -1, 0 or +1: the sign of the exact value. */
 int xp_sign(const xp *x);
 /* hi + lo = the value to within 2u^2 |value| (hi the value rounded,

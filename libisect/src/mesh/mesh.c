@@ -389,3 +389,16 @@ int mesh_check(const isect_shape *s)
     (void)s;
     return ISECT_OK;
 }
+
+int mesh_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    const isect_mesh *m = s->mesh;
+    const int32_t *corners = m->idx + mesh_face_start(m, prim);
+    int n = mesh_face_size(m, prim);
+    if (n == 3) {
+        const double *a = mesh_vertex(m, corners[0]), *b = mesh_vertex(m, corners[1]);
+        const double *c = mesh_vertex(m, corners[2]);
+        return collinear3(a, b, c) ? 1 : -orient3_sign(a, b, c, p);
+    }
+    return polygon_plane_side(m->verts, corners, n, p);
+}

@@ -98,6 +98,9 @@ int     mesh_contains(const isect_shape *s, const double p[3]);
  * misses. */
 int64_t mesh_hit_first_batch(const isect_shape *s, const isect_ray *rays, int64_t n,
                              const isect_params *prm, isect_hit *closest);
+/* The exact side of p against face prim's plane (prim/prim.h): a
+ * triangle's by orient3, a polygon's by polygon_plane_side. */
+int     mesh_side_test(const isect_shape *s, const double p[3], int32_t prim);
 /* 1 when the mesh is closed (contains applies). */
 int     mesh_is_closed(const isect_mesh *m);
 

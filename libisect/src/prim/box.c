@@ -168,3 +168,15 @@ int aabb_contains(const isect_shape *s, const double p[3])
     return inside;
 }
 
+int aabb_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    const double *lo = s->data, *hi = s->data + 3;
+    int inside = 1;
+    for (int a = 0; a < 3; a++) {
+        if (!(lo[a] < hi[a]) || p[a] < lo[a] || p[a] > hi[a])
+            return 1; /* flat (degenerate), or outside */
+        inside &= lo[a] < p[a] && p[a] < hi[a];
+    }
+    return inside ? -1 : 0;
+}

@@ -142,3 +142,24 @@ int convex_contains(const isect_shape *s, const double p[3])
     return 1;
 }
 
+/* Outside if any plane's a.p + d is positive, strictly inside if all are
+ * negative (each sign exact: plane_side_test on that plane). */
+int convex_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    int all_negative = 1;
+    for (int i = 0; i < s->n; i++) {
+        const double *pl = s->data + 4 * (int64_t)i;
+        int side;
+        if (pl[0] == 0.0 && pl[1] == 0.0 && pl[2] == 0.0) {
+            side = pl[3] > 0.0 ? 1 : pl[3] < 0.0 ? -1 : 0;
+        } else {
+            isect_shape plane = { ISECT_PLANE, 0, 0, 0, pl, NULL, NULL };
+            side = plane_side_test(&plane, p, -1);
+        }
+        if (side > 0)
+            return 1;
+        all_negative &= side < 0;
+    }
+    return all_negative ? -1 : 0;
+}

@@ -40,6 +40,7 @@
  * power-of-two factor, which keeps their order) and converted once.
  */
 #include "prim/prim.h"
+#include "core/expansion.h"
 #include "core/quadratic.h"
 #include "core/vec3.h"
 
@@ -312,3 +313,97 @@ int cylinder_inf_contains(const isect_shape *s, const double p[3])
     return frame_contains(&fr, 0);
 }
 
+/* ------------------------------------------------------------ side tests */
+
+/*
+ * Exactly, after one power-of-two scale of every position and the radius
+ * (and the infinite cylinder's axis by its own): the radial excess
+ * |(p - p0) x a|^2 - r^2 |a|^2 (degree 4) and, for the finite cylinder, the
+ * cap values (p - p0).a and (p - p1).a, a the axis (p1 - p0, exact as two
+ * parts per component).
+ */
+typedef struct cyl_signs {
+    int radial;      /* sign of the radial excess */
+    int below, above; /* (p - p0).a < 0, (p - p1).a > 0 as signs (+1 beyond the cap) */
+} cyl_signs;
+
+static void cyl_exact_signs(const double *origin, const xp axis[3], double r, const double p[3],
+                            const double *end, int e, cyl_signs *out)
+{
+    xp f[3], m, sum, aa, tmp;
+    for (int k = 0; k < 3; k++)
+        xp_diff(&f[k], pow2_scale(p[k], -e), pow2_scale(origin[k], -e));
+    xp_set(&sum, 0.0);
+    xp_set(&aa, 0.0);
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        xp_mul(&m, &f[i], &axis[j]);
+        xp_mul(&tmp, &f[j], &axis[i]);
+        xp_sub(&m, &m, &tmp);
+        xp_add_mul(&sum, &m, &m);
+        xp_add_mul(&aa, &axis[k], &axis[k]);
+    }
+    double rs = pow2_scale(r, -e);
+    xp rr;
+    xp_set(&rr, rs);
+    xp_scale(&rr, &rr, -rs);
+    xp_mul(&tmp, &rr, &aa);
+    xp_add(&sum, &sum, &tmp);
+    out->radial = xp_sign(&sum);
+    out->below = out->above = -1;
+    if (end != NULL) {
+        xp c0, c1, g;
+        xp_set(&c0, 0.0);
+        xp_set(&c1, 0.0);
+        for (int k = 0; k < 3; k++) {
+            xp_add_mul(&c0, &f[k], &axis[k]);
+            xp_diff(&g, pow2_scale(p[k], -e), pow2_scale(end[k], -e));
+            xp_add_mul(&c1, &g, &axis[k]);
+        }
+        out->below = -xp_sign(&c0);
+        out->above = xp_sign(&c1);
+    }
+}
+
+/* The capped cylinder as a solid (outside beyond either cap or the side);
+ * the open one as the side surface alone, in front of its radial normal. */
+int cylinder_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    const double *p0 = s->data, *p1 = s->data + 3;
+    double r = s->data[6];
+    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(p), fmax_nan(max_abs3(p0), max_abs3(p1)))));
+    xp axis[3];
+    int zero_axis = 1;
+    for (int k = 0; k < 3; k++) {
+        xp_diff(&axis[k], pow2_scale(p1[k], -e), pow2_scale(p0[k], -e));
+        zero_axis &= p0[k] == p1[k];
+    }
+    if (r == 0.0 || zero_axis)
+        return 1; /* degenerate */
+    cyl_signs cs;
+    int capped = (s->flags & ISECT_CAPPED) != 0;
+    cyl_exact_signs(p0, axis, r, p, capped ? p1 : NULL, e, &cs);
+    if (!capped)
+        return cs.radial;
+    if (cs.radial > 0 || cs.below > 0 || cs.above > 0)
+        return 1;
+    return cs.radial < 0 && cs.below < 0 && cs.above < 0 ? -1 : 0;
+}
+
+int cylinder_inf_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    const double *point = s->data, *dir = s->data + 3;
+    double r = s->data[6];
+    if (r == 0.0 || max_abs3(dir) == 0.0)
+        return 1;
+    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(p), max_abs3(point))));
+    int e_axis = pow2_exponent(max_abs3(dir));
+    xp axis[3];
+    for (int k = 0; k < 3; k++)
+        xp_set(&axis[k], pow2_scale(dir[k], -e_axis));
+    cyl_signs cs;
+    cyl_exact_signs(point, axis, r, p, NULL, e, &cs);
+    return cs.radial;
+}

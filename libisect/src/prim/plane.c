@@ -15,6 +15,8 @@
  * so no inf or NaN reaches the output. t = 0 is reported as +0.0.
  */
 #include "prim/prim.h"
+#include "core/expansion.h"
+#include "core/quadratic.h"
 #include "core/vec3.h"
 
 /* v' = v * 2^-e with e the exponent of max|v_i| (frexp), so max|v'_i| is in
@@ -58,3 +60,25 @@ int plane_hits(const isect_shape *s, const isect_ray *ray, const isect_params *p
     return 1;
 }
 
+/* n.p + d exactly: n and d scaled by the power of two of n, then p and d by
+ * that of the larger of p and the scaled d (the sign is kept). */
+int plane_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    double n[3], q[3];
+    int e_n = pow2_exponent(max_abs3(s->data));
+    if (max_abs3(s->data) == 0.0)
+        return 1; /* degenerate */
+    scale3(n, s->data, e_n);
+    double d = pow2_scale(s->data[3], -e_n);
+    int e_p = pow2_exponent(fmax_nan(max_abs3(p), fabs(d)));
+    scale3(q, p, e_p);
+    xp sum, term;
+    xp_set(&sum, pow2_scale(d, -e_p));
+    for (int k = 0; k < 3; k++) {
+        xp_set(&term, n[k]);
+        xp_scale(&term, &term, q[k]);
+        xp_add(&sum, &sum, &term);
+    }
+    return xp_sign(&sum);
+}

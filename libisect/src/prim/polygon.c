@@ -5,7 +5,9 @@
  * isect_polygon_normal and isect_plane_from_points.
  */
 #include "prim/planar.h"
+#include "core/expansion.h"
 #include "core/predicates.h"
+#include "core/quadratic.h"
 #include "core/vec3.h"
 
 #include <stddef.h>
@@ -214,4 +216,55 @@ ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4])
     }
     plane[3] = -v3_dot(plane, centroid);
     return ISECT_OK;
+}
+
+/*
+ * sign(N.(p - m)) with N = sum_i v_i x v_{i+1} (Newell) and m the vertex
+ * centroid, both exact: n N.(p - m) = sum_k N_k (n p_k - sum_i v_ik). All
+ * coordinates are first scaled by one power of two (degree 3: the sign is
+ * kept).
+ */
+int polygon_plane_side(const double *v, const int32_t *idx, int n, const double p[3])
+{
+    double m = max_abs3(p);
+    for (int i = 0; i < n; i++)
+        m = fmax_nan(m, max_abs3(vertex_at(v, idx, i)));
+    int e = pow2_exponent(m);
+    xp normal[3], t[3], tmp, tmp2;
+    for (int k = 0; k < 3; k++) {
+        xp_set(&normal[k], 0.0);
+        xp_set(&t[k], (double)n);
+        xp_scale(&t[k], &t[k], pow2_scale(p[k], -e));
+    }
+    const double *prev = vertex_at(v, idx, n - 1);
+    for (int i = 0; i < n; i++) {
+        const double *cur = vertex_at(v, idx, i);
+        double a[3], b[3];
+        scale3(a, prev, e);
+        scale3(b, cur, e);
+        for (int k = 0; k < 3; k++) {
+            int i1 = (k + 1) % 3, i2 = (k + 2) % 3;
+            xp_set(&tmp, a[i1]);
+            xp_scale(&tmp, &tmp, b[i2]);
+            xp_set(&tmp2, a[i2]);
+            xp_scale(&tmp2, &tmp2, b[i1]);
+            xp_sub(&tmp, &tmp, &tmp2);
+            xp_add(&normal[k], &normal[k], &tmp);
+            xp_add_d(&t[k], -b[k]);
+        }
+        prev = cur;
+    }
+    xp sum;
+    xp_set(&sum, 0.0);
+    for (int k = 0; k < 3; k++)
+        xp_add_mul(&sum, &normal[k], &t[k]);
+    return xp_sign(&sum);
+}
+
+int polygon_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    if (vertices_collinear(s->data, NULL, s->n))
+        return 1; /* degenerate */
+    return polygon_plane_side(s->data, NULL, s->n, p);
 }

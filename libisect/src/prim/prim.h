@@ -84,9 +84,29 @@ ISECT_DECLARE_SHAPE(cylinder)     /* cylinder.c (contains: capped only)      */
 ISECT_DECLARE_SHAPE(cylinder_inf) /* cylinder.c                              */
 ISECT_DECLARE_SHAPE(quadric)      /* quadric.c                               */
 
-/* Exact side tests (sign of the implicit function: -1 inside, 0 on the
- * surface, +1 outside), for containment and for spawning rays off the
- * surface. */
+/* Exact side tests, for spawning rays off a surface (api/spawn.c) and for
+ * containment: the sign of the shape's implicit function at p (object
+ * space), evaluated exactly (expansion.h): -1 strictly inside, or behind
+ * a thin surface's own normal; +1 strictly outside, or in front of it; 0
+ * on the surface. prim picks the part of a thin surface with several (a
+ * mesh face); solids ignore it. Degenerate shapes (never hit) answer +1. */
 int sphere_side(const double *data, const double p[3]);
+#define ISECT_DECLARE_SIDE(X) int X##_side_test(const isect_shape *s, const double p[3], int32_t prim);
+ISECT_DECLARE_SIDE(plane)
+ISECT_DECLARE_SIDE(sphere)
+ISECT_DECLARE_SIDE(ellipsoid)
+ISECT_DECLARE_SIDE(aabb)
+ISECT_DECLARE_SIDE(triangle)
+ISECT_DECLARE_SIDE(polygon)
+ISECT_DECLARE_SIDE(convex)
+ISECT_DECLARE_SIDE(cylinder)
+ISECT_DECLARE_SIDE(cylinder_inf)
+ISECT_DECLARE_SIDE(quadric)
+
+/* The exact side of p against the plane through the polygon whose i-th
+ * vertex is v + 3*idx[i] (idx NULL: v + 3*i), n >= 3: the plane through
+ * the vertex centroid with Newell's normal, both exact (the polygon's plane
+ * as the golden reference defines it). +1 in front of the normal. */
+int polygon_plane_side(const double *v, const int32_t *idx, int n, const double p[3]);
 
 #endif /* ISECT_PRIM_H */

@@ -31,6 +31,7 @@
  * and the gradient are bounded numbers that cannot overflow.
  */
 #include "prim/prim.h"
+#include "core/expansion.h"
 #include "core/quadratic.h"
 #include "core/vec3.h"
 
@@ -208,3 +209,30 @@ int quadric_contains(const isect_shape *s, const double p[3])
     return comp_value(&value) <= 0.0;
 }
 
+/* Q(p) exactly, in the scaled coordinates of quadric_contains (the scaling
+ * is exact and keeps the sign): each monomial coefficient * x * y as an
+ * expansion. */
+int quadric_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    if (all_zero(s->data))
+        return 1;
+    int e_pos = position_exponent(s->data, p);
+    double q[10], x[3];
+    scaled_coefficients(s->data, e_pos, q);
+    scale3(x, p, e_pos);
+    xp sum, term;
+    xp_set(&sum, q[QJ]);
+    for (int k = 0; k < 6; k++) {
+        xp_set(&term, q[quad_term[k][0]]);
+        xp_scale(&term, &term, x[quad_term[k][1]]);
+        xp_scale(&term, &term, x[quad_term[k][2]]);
+        xp_add(&sum, &sum, &term);
+    }
+    for (int i = 0; i < 3; i++) {
+        xp_set(&term, q[QG + i]);
+        xp_scale(&term, &term, x[i]);
+        xp_add(&sum, &sum, &term);
+    }
+    return xp_sign(&sum);
+}

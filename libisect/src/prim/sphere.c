@@ -325,6 +325,12 @@ int sphere_contains(const isect_shape *s, const double p[3])
     return sphere_side(s->data, p) <= 0;
 }
 
+
+int sphere_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    return s->data[3] == 0.0 ? 1 : sphere_side(s->data, p);
+}
 /* ------------------------------------------------------------- ellipsoid */
 
 /*
@@ -402,3 +408,32 @@ int ellipsoid_contains(const isect_shape *s, const double p[3])
     return sumsq_minus_sq(fr.y0, 1.0) <= 0.0;
 }
 
+/* Sum_k (p_k - c_k)^2 prod_{j != k} R_j^2 - prod R_j^2: the ellipsoid's
+ * equation times prod R^2 (> 0), exactly, after one power-of-two scale of
+ * every position and semi-axis (degree 6: the sign is kept). */
+int ellipsoid_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    const double *c = s->data, *radii = s->data + 3;
+    if (radii[0] == 0.0 || radii[1] == 0.0 || radii[2] == 0.0)
+        return 1;
+    int e = pow2_exponent(fmax_nan(max_abs3(radii), fmax_nan(max_abs3(p), max_abs3(c))));
+    xp rr[3], f2[3], sum, tmp, prod;
+    for (int k = 0; k < 3; k++) {
+        double rk = pow2_scale(radii[k], -e);
+        xp_set(&rr[k], rk);
+        xp_scale(&rr[k], &rr[k], rk);
+        xp f;
+        xp_diff(&f, pow2_scale(p[k], -e), pow2_scale(c[k], -e));
+        xp_mul(&f2[k], &f, &f);
+    }
+    xp_set(&sum, 0.0);
+    for (int k = 0; k < 3; k++) {
+        xp_mul(&tmp, &rr[(k + 1) % 3], &rr[(k + 2) % 3]);
+        xp_add_mul(&sum, &f2[k], &tmp);
+    }
+    xp_mul(&tmp, &rr[0], &rr[1]);
+    xp_mul(&prod, &tmp, &rr[2]);
+    xp_sub(&sum, &sum, &prod);
+    return xp_sign(&sum);
+}

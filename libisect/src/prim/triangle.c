@@ -105,3 +105,12 @@ int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     return triangle_hit_framed(&f, ray, prm, s->data, s->data + 3, s->data + 6, &out[0]);
 }
 
+/* In front of the right-hand normal of a, b, c: orient3_sign is +1 below. */
+int triangle_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    const double *a = s->data, *b = s->data + 3, *c = s->data + 6;
+    if (collinear3(a, b, c))
+        return 1; /* degenerate */
+    return -orient3_sign(a, b, c, p);
+}
