@@ -84,6 +84,23 @@ typedef struct test_shape {
     double      center[3], size;
 } test_shape;
 
+static void shape_plane(test_shape *ts, const char *name, double nx, double ny, double nz,
+                        double d)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->numbers[0] = nx;
+    ts->numbers[1] = ny;
+    ts->numbers[2] = nz;
+    ts->numbers[3] = d;
+    ts->shape.type = ISECT_PLANE;
+    ts->shape.data = ts->numbers;
+    double nn = nx * nx + ny * ny + nz * nz;
+    for (int k = 0; k < 3; k++) /* the plane's point nearest the origin */
+        ts->center[k] = -d * ts->numbers[k] / nn;
+    ts->size = 1.0 + fabs(d) / sqrt(nn);
+}
+
 static void shape_sphere(test_shape *ts, const char *name, double cx, double cy, double cz,
                          double r)
 {
@@ -108,6 +125,13 @@ static void surface_point(const test_shape *ts, double p[3])
     double d[3];
     rng_dir(d);
     switch (ts->shape.type) {
+    case ISECT_PLANE: { /* the centre moved within the plane */
+        double nv[3] = { ts->numbers[0], ts->numbers[1], ts->numbers[2] };
+        double s = (d[0] * nv[0] + d[1] * nv[1] + d[2] * nv[2]) / (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->center[k] + ts->size * (d[k] - s * nv[k]);
+        break;
+    }
     case ISECT_SPHERE:
         for (int k = 0; k < 3; k++)
             p[k] = ts->numbers[k] + ts->numbers[3] * d[k];
@@ -291,7 +315,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 1000000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 5 };
+    enum { SHAPES = 8 };
     test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -308,6 +332,9 @@ int main(int argc, char **argv)
     for (int i = 0; i < 3; i++)
         shapes[4].center[i] = m[4 * i] * c[0] + m[4 * i + 1] * c[1] + m[4 * i + 2] * c[2] + m[4 * i + 3];
     shapes[4].size = 2.0 * c[3];
+    shape_plane(&shapes[5], "plane", 0.3, -0.4, 0.866, -2.5);
+    shape_plane(&shapes[6], "far plane", 1e-3, 2.0, -0.5, 3e7);
+    shape_plane(&shapes[7], "axis plane", 0.0, 0.0, 1.0, 0.0);
     for (int i = 0; i < SHAPES; i++)
         test_shape_rays(&shapes[i], n / SHAPES);
     printf("digest %016llx\n", (unsigned long long)digest);

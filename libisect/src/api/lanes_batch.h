@@ -7,6 +7,7 @@
 #define ISECT_LANES_BATCH_H
 
 #include "api/lanes.h"
+#include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
@@ -26,6 +27,11 @@ static ALWAYS_INLINE vm LANES_FN(screen_sphere)(const void *prep, const lane_ray
 static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     sphere_lanes_first((const sphere_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    plane_lanes_first((const plane_prep *)prep, r, h);
 }
 
 /* Rays are taken LANES_CHUNK at a time through two passes: the screen over
@@ -91,12 +97,55 @@ static ALWAYS_INLINE void LANES_FN(put_miss)(isect_hit *out)
     *out = miss;
 }
 
+/* The rays at[] in object space and which of them are valid (ray_check
+ * of the world ray and, for a transformed shape, of the object ray). */
+static ALWAYS_INLINE vm LANES_FN(load_object)(const isect_shape *s, const isect_ray *const at[LANE_W],
+                                              lane_ray *lr)
+{
+    LANES_FN(load)(at, lr);
+    vm valid = lane_ray_valid(lr);
+    if (s->xform != NULL) {
+        lane_ray_xform(s->xform, lr);
+        valid = vm_and(valid, lane_ray_valid(lr));
+    }
+    return valid;
+}
+
+/* The kernel's records for lanes out[] (valid[] the lanes of good rays;
+ * lanes beyond `lanes` repeat the last one), the deferred lanes through
+ * shape_ray_first, bad rays INVALID; returns the hits among the first
+ * `lanes`. */
+static ALWAYS_INLINE int64_t LANES_FN(finish)(lane_hit *h, unsigned valid, int lanes,
+                                              const shape_family *f, const isect_shape *s,
+                                              const isect_ray *const world[LANE_W],
+                                              isect_hit *const out[LANE_W],
+                                              const isect_params *prm)
+{
+    unsigned slow = vm_bits(h->slow) & valid;
+    h->found = vm_andnot(h->found, h->slow);
+    if (s->xform != NULL)
+        lane_hit_to_world(s->xform, h);
+    LANES_FN(store)(h, out);
+    unsigned real = (1u << lanes) - 1u;
+    int64_t hits = lane_count(vm_bits(h->found) & valid & real);
+    if (((slow | ~valid) & real) != 0) {
+        for (int lane = 0; lane < lanes; lane++) {
+            if (!(valid & (1u << lane)))
+                hit_set_miss(out[lane], ISECT_INVALID);
+            else if (slow & (1u << lane))
+                hits += batch_record(out[lane], shape_ray_first(f, s, world[lane], prm, out[lane]));
+        }
+    }
+    return hits;
+}
+
 /*
  * The loop. A transformed shape's rays are taken to object space in the
  * lanes, by the arithmetic of xform_ray_unchecked (a ray the transform
  * takes out of the finite doubles is INVALID, as shape_ray_first reports
- * it), and kept for pass 2; a lane the kernel defers runs through
- * shape_ray_first; so do the last n mod LANE_W rays of the batch.
+ * it); a lane the kernel defers runs through shape_ray_first; so do the
+ * last n mod LANE_W rays of the batch. Without a screen every ray goes
+ * through the kernel in one pass; with one, in two (see LANES_CHUNK).
  */
 static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel kernel,
                                             const void *prep, const shape_family *f,
@@ -106,6 +155,22 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
 {
     int64_t hit_count = 0, base = 0;
     int64_t full = n - n % LANE_W;
+    if (screen == NULL) {
+        for (int64_t i = 0; i < full; i += LANE_W) {
+            const isect_ray *at[LANE_W];
+            isect_hit *out[LANE_W];
+            for (int lane = 0; lane < LANE_W; lane++) {
+                at[lane] = &rays[i + lane];
+                out[lane] = &closest[i + lane];
+            }
+            lane_ray lr;
+            unsigned valid = vm_bits(LANES_FN(load_object)(s, at, &lr));
+            lane_hit h;
+            kernel(prep, &lr, &h);
+            hit_count += LANES_FN(finish)(&h, valid, LANE_W, f, s, at, out, prm);
+        }
+        base = full;
+    }
     isect_ray object[LANES_CHUNK];
     for (; base < full; base += LANES_CHUNK) {
         int chunk = full - base < LANES_CHUNK ? (int)(full - base) : LANES_CHUNK;
@@ -119,11 +184,8 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             for (int lane = 0; lane < LANE_W; lane++)
                 at[lane] = &rays[base + i + lane];
             lane_ray lr;
-            LANES_FN(load)(at, &lr);
-            vm valid = lane_ray_valid(&lr);
+            unsigned ok = vm_bits(LANES_FN(load_object)(s, at, &lr));
             if (s->xform != NULL) {
-                lane_ray_xform(s->xform, &lr);
-                valid = vm_and(valid, lane_ray_valid(&lr));
                 double *rows[LANE_W];
                 for (int lane = 0; lane < LANE_W; lane++)
                     rows[lane] = object[i + lane].org;
@@ -131,8 +193,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
                                     lr.dir[1], lr.dir[2], lr.tmin, lr.tmax };
                 vd_store_rows8(rows, col);
             }
-            unsigned ok = vm_bits(valid);
-            unsigned maybe = (screen != NULL ? vm_bits(screen(prep, &lr)) : LANE_ALL) & ok;
+            unsigned maybe = vm_bits(screen(prep, &lr)) & ok;
             /* Without branches on the outcome (random rays would
              * mispredict half of them): every record starts as a miss,
              * candidates are appended by a counted store, and the kernel
@@ -153,32 +214,19 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
         for (int c = cand_count; c < cand_count + LANE_W; c++)
             cand[c] = cand_count > 0 ? cand[cand_count - 1] : 0;
         for (int c = 0; c < cand_count; c += LANE_W) {
-            const isect_ray *at[LANE_W];
+            const isect_ray *at[LANE_W], *world[LANE_W];
             isect_hit *out[LANE_W];
             for (int lane = 0; lane < LANE_W; lane++) {
                 at[lane] = &src[cand[c + lane]];
+                world[lane] = &rays[base + cand[c + lane]];
                 out[lane] = &closest[base + cand[c + lane]];
             }
             lane_ray lr;
             LANES_FN(load)(at, &lr);
             lane_hit h;
             kernel(prep, &lr, &h);
-            unsigned slow = vm_bits(h.slow);
-            h.found = vm_andnot(h.found, h.slow);
-            if (s->xform != NULL)
-                lane_hit_to_world(s->xform, &h);
-            LANES_FN(store)(&h, out);
             int lanes = cand_count - c < LANE_W ? cand_count - c : LANE_W;
-            hit_count += lane_count(vm_bits(h.found) & ((1u << lanes) - 1u));
-            if (slow != 0) {
-                for (int lane = 0; lane < lanes; lane++) {
-                    if (!(slow & (1u << lane)))
-                        continue;
-                    int64_t i = base + cand[c + lane];
-                    hit_count += batch_record(&closest[i],
-                                              shape_ray_first(f, s, &rays[i], prm, &closest[i]));
-                }
-            }
+            hit_count += LANES_FN(finish)(&h, LANE_ALL, lanes, f, s, world, out, prm);
         }
     }
     for (int64_t i = full; i < n; i++) {
@@ -200,9 +248,20 @@ static int64_t LANES_FN(batch_sphere)(const shape_family *f, const isect_shape *
                           prm, closest);
 }
 
+static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
+                                     const isect_ray *rays, int64_t n, const isect_params *prm,
+                                     isect_hit *closest)
+{
+    plane_prep pp;
+    plane_prepare(s->data, prm->eps, &pp);
+    return LANES_FN(loop)(NULL, LANES_FN(kernel_plane), &pp, f, s, rays, n, prm, closest);
+}
+
 lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
 {
     switch (type) {
+    case ISECT_PLANE:
+        return LANES_FN(batch_plane);
     case ISECT_SPHERE:
         return LANES_FN(batch_sphere);
     default:

@@ -78,6 +78,17 @@ static ALWAYS_INLINE vd dd_mul_inv(vdd x, vdd y, vd inv_y)
     return vd_add(tau, vd_mul(r, inv_y));
 }
 
+/* The same quotient kept as a renormalised dd, tau + correction (the
+ * correction's own error, <= 21u^2 |x/y|, is the only one): for placing a
+ * point at o + t d to a fraction of an ulp. */
+static ALWAYS_INLINE vdd dd_mul_inv_dd(vdd x, vdd y, vd inv_y)
+{
+    vd tau = vd_mul(x.hi, inv_y);
+    vdd p = two_prod(tau, y.hi);
+    vd r = vd_add(vd_sub(vd_sub(x.hi, p.hi), p.lo), vd_sub(x.lo, vd_mul(tau, y.lo)));
+    return two_sum(tau, vd_mul(r, inv_y));
+}
+
 /* x / y as dd_mul_inv, with its own division. */
 static ALWAYS_INLINE vd dd_div(vdd x, vdd y)
 {

@@ -49,6 +49,20 @@ int unit3(double out[3], const double v[3])
     return 1;
 }
 
+int unit3_accurate(double out[3], const double v[3])
+{
+    if (!unit3(out, v))
+        return 0;
+    /* |n|^2 = 1 + e: exact squares, compensated sum, then n (3 - |n|^2)/2 */
+    comp_sum nn = { 0.0, 0.0 };
+    for (int k = 0; k < 3; k++)
+        comp_add_product(&nn, out[k], out[k]);
+    double scale = (1.5 - 0.5 * nn.hi) - 0.5 * nn.lo;
+    for (int k = 0; k < 3; k++)
+        out[k] = out[k] * scale + 0.0;
+    return 1;
+}
+
 void normal_or_facing(double normal[3], const double v[3], const double d[3], int32_t kind)
 {
     if (unit3(normal, v))

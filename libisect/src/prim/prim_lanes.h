@@ -145,6 +145,32 @@ static ALWAYS_INLINE void lane_unit_newton(vd n[3])
         n[k] = vd_mul(n[k], scale);
 }
 
+static ALWAYS_INLINE vd lane_max_abs3(vd a, vd b, vd c)
+{
+    return vd_max(vd_abs(a), vd_max(vd_abs(b), vd_abs(c)));
+}
+
+/* x0 y0 + x1 y1 + x2 y2 as dd: exact products (TwoProduct), compensated
+ * sum; |error| <= 12u^2 sum |x_k y_k| while nothing underflows. */
+static ALWAYS_INLINE vdd lane_dot3_dd(vd x0, vd x1, vd x2, vd y0, vd y1, vd y2)
+{
+    vdd p0 = two_prod(x0, y0), p1 = two_prod(x1, y1), p2 = two_prod(x2, y2);
+    vdd s = two_sum(p0.hi, p1.hi);
+    vdd s2 = two_sum(s.hi, p2.hi);
+    s2.lo = vd_add(vd_add(s.lo, s2.lo), vd_add(vd_add(p0.lo, p1.lo), p2.lo));
+    return s2;
+}
+
+/* The fast kernels' range for a ray: |org| <= org_bound, 2^-200 <=
+ * max|dir_k| <= 2^200 (a NaN fails it too). */
+static ALWAYS_INLINE vm lane_ray_in_range(const lane_ray *ray, double org_bound)
+{
+    vd o_max = lane_max_abs3(ray->org[0], ray->org[1], ray->org[2]);
+    vd d_max = lane_max_abs3(ray->dir[0], ray->dir[1], ray->dir[2]);
+    return vm_and(vd_le(o_max, vd_set1(org_bound)),
+                  vm_and(vd_ge(d_max, vd_set1(0x1p-200)), vd_le(d_max, vd_set1(0x1p200))));
+}
+
 /* The number of set bits of a lane mask (LANE_W <= 8). */
 static ALWAYS_INLINE int lane_count(unsigned bits)
 {
@@ -177,6 +203,19 @@ static ALWAYS_INLINE vm lane_certainly_in(vd t, vd err, const lane_ray *r)
 static ALWAYS_INLINE vm lane_certainly_out(vd t, vd err, const lane_ray *r)
 {
     return vm_or(vd_lt(vd_add(t, err), r->tmin), vd_gt(vd_sub(t, err), r->tmax));
+}
+
+/* o + t d for t = t.hi + t.lo, each coordinate summed exactly enough
+ * (TwoProduct of t.hi d, TwoSum with o, the low parts rounded) that the one
+ * final rounding is its only error: a point on the ray at a parameter
+ * known to ~u^2, even where |o| is far larger than the point. */
+static ALWAYS_INLINE void lane_point_on_ray(const lane_ray *r, vdd t, vd out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        vdd p = two_prod(t.hi, r->dir[k]);
+        vdd s = two_sum(r->org[k], p.hi);
+        out[k] = vd_add(s.hi, vd_add(vd_add(s.lo, p.lo), vd_mul(t.lo, r->dir[k])));
+    }
 }
 
 /* t clamped into [tmin, tmax]: the parameter reported for a crossing

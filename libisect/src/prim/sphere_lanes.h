@@ -88,31 +88,6 @@ static inline void sphere_prepare(const double *data, double eps, sphere_prep *s
     sp->degenerate = sp->r == 0.0;
 }
 
-static ALWAYS_INLINE vd max_abs3v(vd a, vd b, vd c)
-{
-    return vd_max(vd_abs(a), vd_max(vd_abs(b), vd_abs(c)));
-}
-
-/* x0 y0 + x1 y1 + x2 y2 as dd: exact products, compensated sum; |error|
- * <= 12u^2 sum |x_k y_k|. */
-static ALWAYS_INLINE vdd dot3_dd(vd x0, vd x1, vd x2, vd y0, vd y1, vd y2)
-{
-    vdd p0 = two_prod(x0, y0), p1 = two_prod(x1, y1), p2 = two_prod(x2, y2);
-    vdd s = two_sum(p0.hi, p1.hi);
-    vdd s2 = two_sum(s.hi, p2.hi);
-    s2.lo = vd_add(vd_add(s.lo, s2.lo), vd_add(vd_add(p0.lo, p1.lo), p2.lo));
-    return s2;
-}
-
-/* The kernel's range for the ray (see the top of the file). */
-static ALWAYS_INLINE vm sphere_ray_in_range(const lane_ray *ray)
-{
-    vd o_max = max_abs3v(ray->org[0], ray->org[1], ray->org[2]);
-    vd d_max = max_abs3v(ray->dir[0], ray->dir[1], ray->dir[2]);
-    return vm_and(vd_le(o_max, vd_set1(0x1p200)),
-                  vm_and(vd_ge(d_max, vd_set1(0x1p-200)), vd_le(d_max, vd_set1(0x1p200))));
-}
-
 /*
  * The lanes that may meet the sphere: all but those that certainly miss it
  * (no crossing, no touch), decided in plain arithmetic (about half of all
@@ -140,12 +115,12 @@ static ALWAYS_INLINE vm sphere_lanes_screen(const sphere_prep *sp, const lane_ra
     vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
     vd m1 = vd_sub(vd_mul(f2, d[0]), vd_mul(f0, d[2]));
     vd m2 = vd_sub(vd_mul(f0, d[1]), vd_mul(f1, d[0]));
-    vd m_max = max_abs3v(m0, m1, m2);
-    vd f_max = max_abs3v(f0, f1, f2);
-    vd d_max = max_abs3v(d[0], d[1], d[2]);
+    vd m_max = lane_max_abs3(m0, m1, m2);
+    vd f_max = lane_max_abs3(f0, f1, f2);
+    vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vd a = vd_add(vd_mul(vd_set1(0x1p-50), vd_mul(f_max, d_max)), vd_set1(0x1p-1000));
     vm usable = vm_and(vd_ge(m_max, vd_set1(0x1p-400)), vd_le(a, vd_mul(vd_set1(0x1p-32), m_max)));
-    usable = vm_and(usable, sphere_ray_in_range(ray));
+    usable = vm_and(usable, lane_ray_in_range(ray, 0x1p200));
     vd mm = vd_add(vd_add(vd_mul(m0, m0), vd_mul(m1, m1)), vd_mul(m2, m2));
     vd dd = vd_add(vd_add(vd_mul(d[0], d[0]), vd_mul(d[1], d[1])), vd_mul(d[2], d[2]));
     vd lhs = vd_mul(mm, vd_set1(1.0 - 0x1p-28));
@@ -193,7 +168,7 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
     /* |G - g| <= 2^-50 (r^2 D + |m|^2) + 4 A sum|m_k| + 4 A^2 + ETA, A =
      * 2^-50 fm dm bounding each plain m_k's error (f rounded to fh included:
      * 3.02u (|f_i d_j| + |f_j d_i|) + 2u fm dm <= 6.04u fm dm). */
-    vd a = vd_mul(vd_set1(0x1p-50), vd_mul(max_abs3v(f0, f1, f2), max_abs3v(d[0], d[1], d[2])));
+    vd a = vd_mul(vd_set1(0x1p-50), vd_mul(lane_max_abs3(f0, f1, f2), lane_max_abs3(d[0], d[1], d[2])));
     vd m_sum = vd_add(vd_add(vd_abs(m0), vd_abs(m1)), vd_abs(m2));
     vd e_g = vd_add(vd_add(vd_mul(vd_set1(0x1p-50), vd_add(rr_dd, mm)),
                            vd_mul(vd_set1(4.0), vd_mul(a, vd_add(m_sum, a)))),
@@ -202,7 +177,7 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
     vd band = vd_add(vd_mul(vd_set1(sp->eps * (1.0 + 0x1p-50)), rr_dd), e_g);
     pl->cross = vd_gt(g, band);
     vm miss = vd_lt(g, vd_neg(band));
-    vm ok = sp->in_range ? sphere_ray_in_range(ray) : vm_false();
+    vm ok = sp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
     pl->slow = vm_not(vm_and(ok, vm_or(pl->cross, miss)));
 
     /* Starting values; one division for both: q/D = q^2/(qD), C/q = CD/(qD). */
@@ -256,8 +231,8 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
 
     vd v_sum = vd_add(vd_add(vd_abs(vh[0]), vd_abs(vh[1])), vd_abs(vh[2]));
     vd l_sum = vd_add(vd_add(vd_abs(vl[0]), vd_abs(vl[1])), vd_abs(vl[2]));
-    vd d_max = max_abs3v(d[0], d[1], d[2]);
-    vd f_max = max_abs3v(pl->f[0].hi, pl->f[1].hi, pl->f[2].hi);
+    vd d_max = lane_max_abs3(d[0], d[1], d[2]);
+    vd f_max = lane_max_abs3(pl->f[0].hi, pl->f[1].hi, pl->f[2].hi);
     vd big_f = vd_add(f_max, vd_mul(vd_abs(t0), d_max));
     vd e_r = vd_add(vd_add(vd_mul(vd_mul(vd_set1(32.0), u2), vd_add(b.hi, vd_set1(sp->rr_hi))),
                            vd_mul(vd_mul(vd_set1(8.0), u),
@@ -336,8 +311,8 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
     vd n[3] = { vd_mul(v[0], inv_r), vd_mul(v[1], inv_r), vd_mul(v[2], inv_r) };
     lane_unit_newton(n);
     h->t = t;
-    vd o_max = max_abs3v(ray->org[0], ray->org[1], ray->org[2]);
-    vd d_max = max_abs3v(d[0], d[1], d[2]);
+    vd o_max = lane_max_abs3(ray->org[0], ray->org[1], ray->org[2]);
+    vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vm snap = vd_lt(vd_set1(sp->snap_scale), vd_add(o_max, vd_mul(vd_abs(t), d_max)));
     for (int k = 0; k < 3; k++) {
         vd nk = vd_add(n[k], vd_zero()); /* + 0: never -0 */
