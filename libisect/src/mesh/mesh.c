@@ -195,7 +195,6 @@ typedef struct face_items {
     int32_t  *face;  /* item -> face */
     float   (*box)[6];
     uint8_t  *flags;
-    double  (*plane)[6]; /* polygon items: unit normal, centroid */
     int64_t   count;
 } face_items;
 
@@ -204,7 +203,6 @@ static void face_items_free(face_items *it)
     free(it->face);
     free(it->box);
     free(it->flags);
-    free(it->plane);
 }
 
 static int face_items_make(isect_mesh *m, face_items *it)
@@ -214,10 +212,8 @@ static int face_items_make(isect_mesh *m, face_items *it)
     it->face = malloc(n * sizeof *it->face);
     it->box = malloc(n * sizeof *it->box);
     it->flags = malloc(n * sizeof *it->flags);
-    it->plane = m->offsets != NULL ? malloc(n * sizeof *it->plane) : NULL;
     it->count = 0;
-    if (it->face == NULL || it->box == NULL || it->flags == NULL
-        || (m->offsets != NULL && it->plane == NULL))
+    if (it->face == NULL || it->box == NULL || it->flags == NULL)
         return ISECT_E_NOMEM;
     for (int64_t f = 0; f < nf; f++) {
         const int32_t *corner = m->idx + mesh_face_start(m, f);
@@ -231,13 +227,10 @@ static int face_items_make(isect_mesh *m, face_items *it)
             }
             it->flags[k] = 0;
         } else {
-            double normal[3], centroid[3];
-            if (!polygon_plane(m->verts, corner, size, normal, centroid)) {
+            if (!polygon_plane(m->verts, corner, size, &m->planes[f])) {
                 m->degenerate_faces++;
                 continue;
             }
-            memcpy(it->plane[k], normal, sizeof normal);
-            memcpy(it->plane[k] + 3, centroid, sizeof centroid);
             it->flags[k] = BVH_FLAG_LOOSE_T;
         }
         double lo[3], hi[3];
@@ -294,8 +287,7 @@ static int mesh_build(isect_mesh *m)
                 if (!triangle_plane(p->v, p->v + 3, p->v + 6, p->n, &nonzero))
                     memset(p->n, 0, sizeof p->n);
             } else {
-                memcpy(p->v, it.plane[item], 6 * sizeof(double));
-                memset(p->v + 6, 0, 3 * sizeof(double));
+                memset(p->v, 0, sizeof p->v);
                 memset(p->n, 0, sizeof p->n);
             }
         }
@@ -329,9 +321,12 @@ ISECT_API int isect_mesh_create(const double *verts, int64_t nv, const int32_t *
     int64_t corners = offsets != NULL ? offsets[nf] : 3 * nf;
     m->verts = malloc((size_t)(nv > 0 ? 3 * nv : 1) * sizeof *m->verts);
     m->idx = malloc((size_t)(corners > 0 ? corners : 1) * sizeof *m->idx);
-    if (offsets != NULL)
+    if (offsets != NULL) {
         m->offsets = malloc((size_t)(nf + 1) * sizeof *m->offsets);
-    if (m->verts == NULL || m->idx == NULL || (offsets != NULL && m->offsets == NULL)) {
+        m->planes = calloc((size_t)(nf > 0 ? nf : 1), sizeof *m->planes);
+    }
+    if (m->verts == NULL || m->idx == NULL
+        || (offsets != NULL && (m->offsets == NULL || m->planes == NULL))) {
         isect_mesh_destroy(m);
         return ISECT_E_NOMEM;
     }
@@ -359,6 +354,7 @@ ISECT_API void isect_mesh_destroy(isect_mesh *mesh)
     free(mesh->idx);
     free(mesh->offsets);
     free(mesh->prims);
+    free(mesh->planes);
     bvh_free(&mesh->tree);
     free(mesh);
 }
@@ -375,6 +371,8 @@ ISECT_API int64_t isect_mesh_bytes(const isect_mesh *mesh)
     if (mesh->offsets != NULL)
         bytes += (mesh->face_count + 1) * (int64_t)sizeof(int64_t);
     bytes += mesh_traversal_bytes(mesh);
+    if (mesh->planes != NULL)
+        bytes += mesh->face_count * (int64_t)sizeof *mesh->planes;
     return bytes;
 }
 

@@ -17,13 +17,14 @@
 #define ISECT_MESH_H
 
 #include "mesh/bvh.h"
-#include "prim/prim.h"
+#include "prim/planar.h"
 
 /* One face in BVH leaf order, with what the hot loop needs inline. 104
  * bytes. */
 typedef struct mesh_prim {
     double  v[9];   /* triangle: its vertices a, b, c (copies, bit-identical to
-                       the mesh's vertex array); polygon: unit normal, centroid */
+                       the mesh's vertex array); polygon: 0 (its plane is in
+                       the mesh's planes[face]) */
     double  n[3];   /* triangle: its triangle_plane normal, or 0 0 0 when that
                        has none (a face the exact test never hits); polygon: 0 */
     int32_t face;   /* face index (the hit's prim) */
@@ -37,6 +38,9 @@ struct isect_mesh {
     int32_t   *idx;              /* face corners: 3 per triangle, or offsets[face_count] */
     int64_t   *offsets;          /* NULL for a triangle mesh, else [face_count + 1] */
     mesh_prim *prims;            /* the non-degenerate faces, in BVH leaf order */
+    poly_plane *planes;          /* polygon meshes: each face's plane (polygon_plane,
+                                    bit for bit the lone polygon's), by face index;
+                                    NULL for a triangle mesh */
     int64_t    prim_count;
     int64_t    degenerate_faces; /* faces of zero area (not in the BVH) */
     bvh        tree;

@@ -522,13 +522,9 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
                 continue;
             hit = triangle_hit(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, p->n, 1, &h);
         } else {
-            /* polygon_hit_plane_framed takes |dir| from the frame: computed
-             * once, bit for bit as ray_frame_shear would. */
-            if (q->frame.dir_len < 0.0)
-                q->frame.dir_len = v3_norm(ray->dir);
-            hit = polygon_hit_plane_framed(&q->frame, ray, q->prm, m->verts,
+            hit = polygon_hit_plane_framed(&q->frame, ray, m->verts,
                                            m->idx + mesh_face_start(m, p->face), p->nverts,
-                                           ISECT_EVEN_ODD, p->v, p->v + 3, &h);
+                                           ISECT_EVEN_ODD, &m->planes[p->face], &h);
         }
         /* The dispatcher's filter (hits_finish): NaN t never passes. */
         if (!hit || !(h.t >= ray->tmin && h.t <= ray->tmax))

@@ -24,32 +24,60 @@ int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_pa
                         const double a[3], const double b[3], const double c[3],
                         isect_hit *out);
 
-/* The plane triangle_hit_framed computes for a, b, c, for callers that
- * keep it per face (a mesh): the unit normal of (b - a) x (c - a) and 1,
- * with *nonzero 1 when the exact cross product is certainly nonzero (else
- * 0: the test then decides collinearity exactly); or 0 for a rounded cross
- * product of zero, a triangle triangle_hit_framed never hits. */
+/* The unit normal of (b - a) x (c - a), accurate to about an ulp (the
+ * cross product as a double-double from exact edges), for callers that
+ * keep it per face (a mesh): 1, with *nonzero 1 when the exact cross product
+ * is certainly nonzero (else 0: the test then decides collinearity
+ * exactly); or 0 when the cross product is zero to double-double precision
+ * (then collinear3 decides whether the triangle has any area). */
 int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
                    int *nonzero);
 
-/* The plane of the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
- * v + 3*i; the caller has checked every idx[i]), n >= 3: unit Newell normal with vertices taken relative to the
- * centroid, and the centroid. 1, or 0 (normal and centroid zero) for a
- * polygon of zero area: all vertices exactly collinear, or a zero normal. */
-int polygon_plane(const double *v, const int32_t *idx, int n, double normal[3],
-                  double centroid[3]);
+/* The record of a ray that the exact side test sends through triangle
+ * a, b, c: its crossing with the plane, decided exactly against [tmin,
+ * tmax] (triangle_lanes.h's bound, else triangle.c's exact path); 1 with
+ * *out (t clamped into the interval, the point o + t d placed from t as a
+ * double-double, the normal — the given unit one, or computed — ENTER when
+ * dir.N < 0 exactly, uv = (u, v), prim -1), or 0: no crossing in range
+ * (or, exactly parallel, none at all). */
+int triangle_record(const isect_ray *ray, const double a[3], const double b[3], const double c[3],
+                    const double *normal, double u, double v, isect_hit *out);
 
-/* Polygon with a plane from polygon_plane (for callers that keep it per
- * face), f the frame of ray: 1 and *out or 0. rule ISECT_EVEN_ODD (odd winding number) or
- * ISECT_NONZERO. t from the plane through the centroid; uv = 0. */
-int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
-                             const isect_params *prm, const double *v, const int32_t *idx,
-                             int n, int rule, const double normal[3],
-                             const double centroid[3], isect_hit *out);
+/* A polygon's plane (the golden reference's: Newell's normal N = sum_i v_i
+ * x v_{i+1} through the vertex centroid m), as double-doubles: N scaled by
+ * a power of two to a largest component in [0.5, 1) (its direction is all
+ * that matters), within n_err per component; m within m_err per
+ * coordinate; and N/|N| to about an ulp. */
+typedef struct poly_plane {
+    double n_hi[3], n_lo[3], n_err[3];
+    double m_hi[3], m_lo[3], m_err;
+    double unit[3];
+} poly_plane;
+
+/* The plane of the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
+ * v + 3*i; the caller has checked every idx[i]), n >= 3: 1, or 0 when the
+ * polygon has no area (N == 0, decided exactly: collinear vertices, or a
+ * self-intersecting polygon whose signed areas cancel). Fast where the
+ * double-double fan is certain, exact otherwise. */
+int polygon_plane(const double *v, const int32_t *idx, int n, poly_plane *pp);
+
+/* The same, always from the exact expansions (errors of a few u^2): for a
+ * mesh, once per face at creation. */
+int polygon_plane_exact_dd(const double *v, const int32_t *idx, int n, poly_plane *pp);
+
+/* Polygon with its plane, f the frame of ray: 1 and *out or 0. rule
+ * ISECT_EVEN_ODD (odd winding number) or ISECT_NONZERO, decided exactly in
+ * the sheared frame with no epsilon (revision 2); then the crossing with
+ * the plane, decided exactly against [tmin, tmax] (the triangle's
+ * double-double bound, else the exact expansions), the point placed from t
+ * as a double-double, the unit normal, ENTER when dir.N < 0 exactly, uv 0,
+ * prim -1. */
+int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray, const double *v,
+                             const int32_t *idx, int n, int rule, const poly_plane *pp,
+                             isect_hit *out);
 
 /* The same, computing the plane first; 0 for a zero-area polygon. */
-int polygon_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
-                       const double *v, const int32_t *idx, int n, int rule,
-                       isect_hit *out);
+int polygon_hit_framed(const ray_frame *f, const isect_ray *ray, const double *v,
+                       const int32_t *idx, int n, int rule, isect_hit *out);
 
 #endif /* ISECT_PLANAR_H */

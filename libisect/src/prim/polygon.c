@@ -5,6 +5,8 @@
  * isect_polygon_normal and isect_plane_from_points.
  */
 #include "prim/planar.h"
+#include "prim/triangle_lanes.h"
+#include "core/ratio.h"
 #include "core/expansion.h"
 #include "core/predicates.h"
 #include "core/quadratic.h"
@@ -17,20 +19,6 @@ static const double frame_origin[2] = { 0.0, 0.0 };
 static const double *vertex_at(const double *v, const int32_t *idx, int i)
 {
     return v + 3 * (ptrdiff_t)(idx != NULL ? idx[i] : i);
-}
-
-static void vertex_centroid(const double *v, const int32_t *idx, int n, double centroid[3])
-{
-    double sum[3] = { 0.0, 0.0, 0.0 };
-    for (int i = 0; i < n; i++)
-        v3_add(sum, sum, vertex_at(v, idx, i));
-    v3_scale(centroid, sum, 1.0 / n);
-    if (isfinite(centroid[0]) && isfinite(centroid[1]) && isfinite(centroid[2]))
-        return;
-    /* The sum overflowed (coordinates near DBL_MAX): average in scaled steps. */
-    v3_set(centroid, 0.0, 0.0, 0.0);
-    for (int i = 0; i < n; i++)
-        v3_madd(centroid, centroid, 1.0 / n, vertex_at(v, idx, i));
 }
 
 /* 1 when every vertex lies exactly on one line (or all coincide). Stops at
@@ -52,76 +40,147 @@ static int vertices_collinear(const double *v, const int32_t *idx, int n)
     return 1;
 }
 
-/* (p - centroid) * pre * scale, pre and scale powers of two. */
-static void relative_scaled(const double p[3], const double centroid[3], double pre,
-                            double scale, double out[3])
+/* The largest |coordinate| of the vertices. */
+static double vertex_extent(const double *v, const int32_t *idx, int n)
 {
+    double m = 0.0;
+    for (int i = 0; i < n; i++)
+        m = fmax_nan(m, max_abs3(vertex_at(v, idx, i)));
+    return m;
+}
+
+/* The plane exactly: N = sum (v_i - v_0) x (v_{i+1} - v_0) and the sum of
+ * the vertices, as expansions of the coordinates scaled by 2^-e (N is
+ * then scaled by 2^-2e, the sum by 2^-e). */
+static void polygon_plane_exact(const double *v, const int32_t *idx, int n, int e, xp normal[3],
+                                xp sum[3])
+{
+    const double *p0 = vertex_at(v, idx, 0);
+    xp prev[3], cur[3], tmp, tmp2;
+    for (int k = 0; k < 3; k++) {
+        xp_set(&normal[k], 0.0);
+        xp_set(&sum[k], pow2_scale(p0[k], -e));
+        xp_set(&prev[k], 0.0);
+    }
+    for (int i = 1; i < n; i++) {
+        const double *pi = vertex_at(v, idx, i);
+        for (int k = 0; k < 3; k++) {
+            xp_diff(&cur[k], pow2_scale(pi[k], -e), pow2_scale(p0[k], -e));
+            xp_add_d(&sum[k], pow2_scale(pi[k], -e));
+        }
+        for (int k = 0; k < 3; k++) {
+            int a = (k + 1) % 3, b = (k + 2) % 3;
+            xp_mul(&tmp, &prev[a], &cur[b]);
+            xp_mul(&tmp2, &prev[b], &cur[a]);
+            xp_sub(&tmp, &tmp, &tmp2);
+            xp_add(&normal[k], &normal[k], &tmp);
+        }
+        for (int k = 0; k < 3; k++)
+            prev[k] = cur[k];
+    }
+}
+
+/* The plane's double-double form from exact expansions (normal scaled so
+ * its largest component lies in [0.5, 1)): 1, or 0 when N == 0. */
+static int polygon_plane_from_exact(const double *v, const int32_t *idx, int n, poly_plane *pp)
+{
+    int e = pow2_exponent(vertex_extent(v, idx, n));
+    xp normal[3], sum[3];
+    polygon_plane_exact(v, idx, n, e, normal, sum);
+    double hi[3], lo[3];
     for (int k = 0; k < 3; k++)
-        out[k] = (p[k] * pre - centroid[k] * pre) * scale;
+        xp_dd(&normal[k], &hi[k], &lo[k]);
+    if (max_abs3(hi) == 0.0)
+        return 0;
+    int en = pow2_exponent(max_abs3(hi));
+    for (int k = 0; k < 3; k++) {
+        pp->n_hi[k] = pow2_scale(hi[k], -en);
+        pp->n_lo[k] = pow2_scale(lo[k], -en);
+        pp->n_err[k] = 4.0 * 0x1p-106 * fabs(pp->n_hi[k]) + 0x1p-960;
+        /* the centroid: the exact sum over n, to a double-double */
+        double sh, sl;
+        xp_dd(&sum[k], &sh, &sl);
+        double q = sh / n;
+        double r = (sh - q * n) + sl; /* q n exact: n small, q rounded */
+        pp->m_hi[k] = pow2_scale(q, e);
+        pp->m_lo[k] = pow2_scale(r / n, e);
+    }
+    pp->m_err = 8.0 * 0x1p-106 * max_abs3(pp->m_hi) + 0x1p-960;
+    return unit3_accurate(pp->unit, pp->n_hi);
 }
 
-/* The largest |(p - centroid) * pre| coordinate over the vertices. */
-static double relative_extent(const double *v, const int32_t *idx, int n,
-                              const double centroid[3], double pre)
+int polygon_plane(const double *v, const int32_t *idx, int n, poly_plane *pp)
 {
-    double extent = 0.0, rel[3];
-    for (int i = 0; i < n; i++) {
-        relative_scaled(vertex_at(v, idx, i), centroid, pre, 1.0, rel);
-        extent = fmax(extent, fmax(fabs(rel[0]), fmax(fabs(rel[1]), fabs(rel[2]))));
-    }
-    return extent;
-}
-
-int polygon_plane(const double *v, const int32_t *idx, int n, double normal[3],
-                  double centroid[3])
-{
-    vertex_centroid(v, idx, n, centroid);
-    /* Relative to the centroid the Newell sums do not cancel the absolute
-     * position away (accurate far from the origin); a power-of-two scale
-     * keeps the products clear of overflow and underflow for any finite
-     * input without changing the direction. pre = 1/4 only when the plain
-     * difference of two finite coordinates overflows. */
-    double pre = 1.0;
-    double extent = relative_extent(v, idx, n, centroid, pre);
-    if (!isfinite(extent)) {
-        pre = 0.25;
-        extent = relative_extent(v, idx, n, centroid, pre);
-    }
-    double newell[3] = { 0.0, 0.0, 0.0 }, magnitude[3] = { 0.0, 0.0, 0.0 };
-    if (extent > 0.0) {
-        int e = ilogb(extent);
-        double scale = ldexp(1.0, e > 1000 ? -1000 : e < -1000 ? 1000 : -e);
-        double prev[3], cur[3];
-        relative_scaled(vertex_at(v, idx, n - 1), centroid, pre, scale, prev);
-        for (int i = 0; i < n; i++) {
-            relative_scaled(vertex_at(v, idx, i), centroid, pre, scale, cur);
-            /* Newell: twice the vector area, the sum over edges i -> j of
-             * (y_i - y_j)(z_i + z_j), (z_i - z_j)(x_i + x_j), (x_i - x_j)(y_i + y_j). */
-            double term[3] = { (prev[1] - cur[1]) * (prev[2] + cur[2]),
-                               (prev[2] - cur[2]) * (prev[0] + cur[0]),
-                               (prev[0] - cur[0]) * (prev[1] + cur[1]) };
+    /* Fast: the fan from v_0 as double-doubles (triangle_lanes.h's cross
+     * components, summed with TwoSum; error bound accumulated), taken when
+     * its largest component beats 2^20 times the error bound; else the
+     * exact plane (near-collinear or tiny polygons, huge coordinates). */
+    double extent = vertex_extent(v, idx, n);
+    if (extent <= 0x1p200 && extent >= 0x1p-200) {
+        const double *p0 = vertex_at(v, idx, 0);
+        vdd prev[3], cur[3], acc[3];
+        vd err[3] = { 0.0, 0.0, 0.0 };
+        double mag = 0.0;
+        for (int k = 0; k < 3; k++) {
+            prev[k].hi = prev[k].lo = 0.0;
+            acc[k].hi = acc[k].lo = 0.0;
+        }
+        vdd sum[3] = { { p0[0], 0.0 }, { p0[1], 0.0 }, { p0[2], 0.0 } };
+        for (int i = 1; i < n; i++) {
+            const double *pi = vertex_at(v, idx, i);
             for (int k = 0; k < 3; k++) {
-                newell[k] += term[k];
-                magnitude[k] += fabs(term[k]);
+                cur[k] = two_sum(pi[k], -p0[k]);
+                vdd sk = two_sum(sum[k].hi, pi[k]);
+                sum[k].hi = sk.hi;
+                sum[k].lo += sk.lo;
             }
-            v3_copy(prev, cur);
+            for (int k = 0; k < 3; k++) {
+                int a = (k + 1) % 3, b = (k + 2) % 3;
+                vd e;
+                vdd term = tri_cross_comp(prev[a], prev[b], cur[a], cur[b], &e);
+                vdd s2 = two_sum(acc[k].hi, term.hi);
+                acc[k].hi = s2.hi;
+                acc[k].lo += s2.lo + term.lo;
+                err[k] += e;
+                mag = fmax_nan(mag, fabs(acc[k].hi));
+            }
+            for (int k = 0; k < 3; k++)
+                prev[k] = cur[k];
+        }
+        /* the lows' own rounding: n additions of terms below u |acc| */
+        double big = 0.0, worst = 0.0;
+        for (int k = 0; k < 3; k++) {
+            acc[k] = two_sum(acc[k].hi, acc[k].lo);
+            err[k] = err[k] * (1.0 + 0x1p-40) + 4.0 * n * 0x1p-106 * mag;
+            big = fmax_nan(big, fabs(acc[k].hi));
+            worst = fmax_nan(worst, err[k]);
+        }
+        if (big > 0x1p20 * worst && big >= 0x1p-400) {
+            int en = pow2_exponent(big);
+            for (int k = 0; k < 3; k++) {
+                pp->n_hi[k] = pow2_scale(acc[k].hi, -en);
+                pp->n_lo[k] = pow2_scale(acc[k].lo, -en);
+                pp->n_err[k] = pow2_scale(err[k], -en) * (1.0 + 0x1p-40);
+                double q = sum[k].hi / n;
+                vdd qn = two_prod(q, (double)n);
+                double r = ((sum[k].hi - qn.hi) - qn.lo) + sum[k].lo;
+                pp->m_hi[k] = q;
+                pp->m_lo[k] = r / n;
+            }
+            pp->m_err = (2.0 * n + 8.0) * 0x1p-106 * extent + 0x1p-960;
+            return unit3_accurate(pp->unit, pp->n_hi);
         }
     }
-    /* A sliver whose every Newell component is within the rounding error
-     * of its own sum has a normal with no correct digit (the error of each
-     * term is at most ~3u of it after the centroid-relative rounding, the
-     * recursive sum adds (n-1)u of the sum of magnitudes): its plane, and so
-     * any hit on it, would be noise. It counts as zero area. */
-    const double noise = (n + 4) * 0x1p-52;
-    int has_digits = 0;
-    for (int k = 0; k < 3; k++)
-        has_digits |= fabs(newell[k]) > noise * magnitude[k];
-    double len = v3_normalize(normal, newell);
-    if (has_digits && len > 0.0 && isfinite(len) && !vertices_collinear(v, idx, n))
-        return 1;
-    v3_set(normal, 0.0, 0.0, 0.0);
-    v3_set(centroid, 0.0, 0.0, 0.0);
-    return 0;
+    if (vertices_collinear(v, idx, n))
+        return 0;
+    return polygon_plane_from_exact(v, idx, n, pp);
+}
+
+int polygon_plane_exact_dd(const double *v, const int32_t *idx, int n, poly_plane *pp)
+{
+    if (vertices_collinear(v, idx, n))
+        return 0;
+    return polygon_plane_from_exact(v, idx, n, pp);
 }
 
 /* Winding number of the perturbed frame origin around the projected
@@ -140,32 +199,109 @@ static int32_t frame_winding(const ray_frame *f, const double *v, const int32_t 
     return winding;
 }
 
-int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray,
-                             const isect_params *prm, const double *v, const int32_t *idx,
-                             int n, int rule, const double normal[3],
-                             const double centroid[3], isect_hit *out)
+/*
+ * The exact path of the crossing parameter: with the coordinates scaled by
+ * 2^-e (the direction by its own power of two), n t = num/den with num =
+ * sum_k N_k (sum_i v_ik - n o_k) and den = n N.dir, both exact expansions
+ * (N the exact Newell normal), decided by core/ratio.c.
+ */
+static int polygon_crossing_exact(const isect_ray *ray, const double *v, const int32_t *idx,
+                                  int n, double *t_hi, double *t_lo, int *enter, int *t_shift_out,
+                                  int *e_out)
 {
-    /* Epsilon policy (normal is unit or zero; zero never passes). */
-    double nd = v3_dot(normal, ray->dir);
-    if (!(fabs(nd) > prm->eps * f->dir_len))
+    int e = pow2_exponent(fmax_nan(vertex_extent(v, idx, n), max_abs3(ray->org)));
+    int e_dir = pow2_exponent(max_abs3(ray->dir));
+    int t_shift = e - e_dir;
+    xp normal[3], sum[3], num, den, tmp;
+    polygon_plane_exact(v, idx, n, e, normal, sum);
+    xp_set(&num, 0.0);
+    xp_set(&den, 0.0);
+    for (int k = 0; k < 3; k++) {
+        xp_set(&tmp, (double)n);
+        xp_scale(&tmp, &tmp, -pow2_scale(ray->org[k], -e));
+        xp_add(&tmp, &tmp, &sum[k]);
+        xp_add_mul(&num, &normal[k], &tmp);
+        xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir) * n);
+        xp_add(&den, &den, &tmp);
+    }
+    int in_range;
+    if (!ratio_decide(&num, &den, pow2_scale(ray->tmin, -t_shift),
+                      pow2_scale(ray->tmax, -t_shift), &in_range, t_hi, t_lo)
+        || !in_range)
         return 0;
-    if (!fill_rule_inside(frame_winding(f, v, idx, n), rule))
-        return 0;
-    double to_plane[3];
-    v3_sub(to_plane, centroid, ray->org);
-    double t = v3_dot(normal, to_plane) / nd;
-    hit_set(out, ray, t, normal, -1, hit_kind_from_normal(ray->dir, normal));
+    *enter = xp_sign(&den) < 0;
+    *t_shift_out = t_shift;
+    *e_out = e;
     return 1;
 }
 
-int polygon_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
-                       const double *v, const int32_t *idx, int n, int rule,
-                       isect_hit *out)
+int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray, const double *v,
+                             const int32_t *idx, int n, int rule, const poly_plane *pp,
+                             isect_hit *out)
 {
-    double normal[3], centroid[3];
-    if (!polygon_plane(v, idx, n, normal, centroid))
+    /* Revision 2: no epsilon; the exact winding number alone decides. */
+    if (!fill_rule_inside(frame_winding(f, v, idx, n), rule))
         return 0;
-    return polygon_hit_plane_framed(f, ray, prm, v, idx, n, rule, normal, centroid, out);
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    vdd t;
+    int enter;
+    double point[3];
+    int fast = 0;
+    if (lane_ray_in_range(&lr, 0x1p200) && max_abs3(pp->m_hi) <= 0x1p200) {
+        tri_plane tp;
+        for (int k = 0; k < 3; k++) {
+            tp.n[k].hi = pp->n_hi[k];
+            tp.n[k].lo = pp->n_lo[k];
+            tp.err[k] = pp->n_err[k];
+        }
+        tri_crossing tc;
+        tri_crossing_solve(&tp, pp->m_hi, pp->m_lo, pp->m_err, &lr, &tc);
+        if (tc.out)
+            return 0;
+        if (tc.in) {
+            fast = 1;
+            t = tc.t;
+            enter = tc.enter;
+            lane_point_on_ray(&lr, t, point);
+        }
+    }
+    if (!fast) {
+        int t_shift, e;
+        if (!polygon_crossing_exact(ray, v, idx, n, &t.hi, &t.lo, &enter, &t_shift, &e))
+            return 0;
+        isect_ray scaled;
+        for (int k = 0; k < 3; k++) {
+            scaled.org[k] = pow2_scale(ray->org[k], -e);
+            scaled.dir[k] = pow2_scale(ray->dir[k], -(e - t_shift));
+        }
+        scaled.tmin = -INFINITY;
+        scaled.tmax = INFINITY;
+        lane_ray sl;
+        lane_ray_from(&sl, &scaled);
+        lane_point_on_ray(&sl, t, point);
+        for (int k = 0; k < 3; k++)
+            point[k] = pow2_scale(point[k], e);
+        t.hi = pow2_scale(t.hi, t_shift);
+        if (!isfinite(t.hi))
+            return 0;
+    }
+    out->t = fmin(fmax(t.hi, ray->tmin), ray->tmax) + 0.0;
+    v3_copy(out->point, point);
+    v3_copy(out->normal, pp->unit);
+    out->uv[0] = out->uv[1] = 0.0;
+    out->prim = -1;
+    out->kind = enter ? ISECT_ENTER : ISECT_EXIT;
+    return 1;
+}
+
+int polygon_hit_framed(const ray_frame *f, const isect_ray *ray, const double *v,
+                       const int32_t *idx, int n, int rule, isect_hit *out)
+{
+    poly_plane pp;
+    if (!polygon_plane(v, idx, n, &pp))
+        return 0;
+    return polygon_hit_plane_framed(f, ray, v, idx, n, rule, &pp, out);
 }
 
 int polygon_check(const isect_shape *s)
@@ -178,9 +314,10 @@ int polygon_check(const isect_shape *s)
 int polygon_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                  isect_hit out[ISECT_MAX_HITS])
 {
+    (void)prm; /* no epsilon for faces (revision 2) */
     ray_frame f;
     ray_frame_shear(ray, &f);
-    return polygon_hit_framed(&f, ray, prm, s->data, NULL, s->n, s->flags, &out[0]);
+    return polygon_hit_framed(&f, ray, s->data, NULL, s->n, s->flags, &out[0]);
 }
 
 /* Shared checks of the two helpers: ISECT_OK, or the error to return. */
@@ -198,8 +335,13 @@ ISECT_API int isect_polygon_normal(const double *v, int n, double normal[3])
     int status = points_check(v, n);
     if (status != ISECT_OK)
         return status;
-    double centroid[3];
-    return polygon_plane(v, NULL, n, normal, centroid) ? ISECT_OK : ISECT_E_DEGENERATE;
+    poly_plane pp;
+    if (!polygon_plane(v, NULL, n, &pp)) {
+        v3_set(normal, 0.0, 0.0, 0.0);
+        return ISECT_E_DEGENERATE;
+    }
+    v3_copy(normal, pp.unit);
+    return ISECT_OK;
 }
 
 ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4])
@@ -209,12 +351,13 @@ ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4])
     int status = points_check(v, n);
     if (status != ISECT_OK)
         return status;
-    double centroid[3];
-    if (!polygon_plane(v, NULL, n, plane, centroid)) {
-        plane[3] = 0.0;
+    poly_plane pp;
+    if (!polygon_plane(v, NULL, n, &pp)) {
+        plane[0] = plane[1] = plane[2] = plane[3] = 0.0;
         return ISECT_E_DEGENERATE;
     }
-    plane[3] = -v3_dot(plane, centroid);
+    v3_copy(plane, pp.unit);
+    plane[3] = -v3_dot(plane, pp.m_hi);
     return ISECT_OK;
 }
 

@@ -1,88 +1,186 @@
 /*
- * triangle.c — the triangle primitive and the public isect_ray_triangle, on
- * the watertight test of triangle_test.h, and the per-face plane
- * (triangle_plane) that test and the mesh share.
+ * triangle.c — the triangle primitive, on the watertight test of
+ * triangle_test.h, and what that test and the mesh share: the per-face
+ * plane (triangle_plane) and the crossing's record (triangle_record, with
+ * its exact path).
  */
 #include "prim/triangle_test.h"
+#include "prim/triangle_lanes.h"
+#include "core/expansion.h"
+#include "core/quadratic.h"
+#include "core/ratio.h"
 
 #include <string.h>
 
-/*
- * 1 when the exact (b - a) x (c - a) is certainly nonzero, judged from the
- * rounded cross product n of the rounded edges e1 = fl(b - a), e2 = fl(c - a)
- * (n_k = fl(p - q), p = fl(e1_i e2_j), q = fl(e1_j e2_i)), so that the exact
- * collinear3 test, which would return 0, can be skipped.
- *
- * Numerics. Let E1, E2 be the exact edges and N = E1 x E2. While nothing
- * underflows, p = P (1 + t1), q = Q (1 + t2) with |t1|, |t2| <= 3u + O(u^2)
- * (one rounding per edge component, one per product), P = E1_i E2_j,
- * Q = E1_j E2_i. If N_k = 0 then P = Q, so |n_k| <= (1 + u) |P| (6u + 2u^3)
- * while |p| + |q| >= 2 |P| (1 - u)^3: |n_k| <= 3.01u (|p| + |q|) <
- * 2^-50 (|p| + |q|). If instead |p| + |q| < 2^-900 (products possibly
- * subnormal), |n_k| <= (1 + u)(|p| + |q|) < 2^-800. So |n_k| >= 2^-800 and
- * |n_k| > 2^-50 (|p| + |q|) prove N_k != 0; then also |N_k| > |n_k| / 2
- * (its error is at most u|n_k| + 3.02u (|p| + |q|) < 0.4 |n_k|).
- *
- * collinear3 decides each N_k with orient2_sign, whose exact path scales the
- * coordinates so the largest is in [1, 2) and loses at most ~2^-1070 to
- * underflowed product tails. With every coordinate |x| <= 2^100 the scaled
- * |N_k| is above 2^-801 2^-200, far above that: orient2_sign returns the
- * true nonzero sign and collinear3 returns 0. Outside that range (and on the
- * rescaled path of triangle_plane) the exact test always runs.
- */
-static int cross_certainly_nonzero(const double a[3], const double b[3], const double c[3],
-                                   const double p[3], const double q[3], const double n[3])
+/* The plane of a, b, c as double-doubles (triangle_lanes.h, one lane). */
+static void triangle_plane_dd(const double a[3], const double b[3], const double c[3],
+                              tri_plane *tp)
 {
-    int moderate = 1;
-    for (int k = 0; k < 3; k++)
-        moderate &= (fabs(a[k]) <= 0x1p100) & (fabs(b[k]) <= 0x1p100) & (fabs(c[k]) <= 0x1p100);
-    if (!moderate)
-        return 0;
-    for (int k = 0; k < 3; k++)
-        if (fabs(n[k]) >= 0x1p-800 && fabs(n[k]) > 0x1p-50 * (fabs(p[k]) + fabs(q[k])))
-            return 1;
-    return 0;
+    vd av[3] = { a[0], a[1], a[2] }, bv[3] = { b[0], b[1], b[2] }, cv[3] = { c[0], c[1], c[2] };
+    tri_plane_make(av, bv, cv, tp);
 }
 
-/* normal = unit((b - a) x (c - a)); returns 0 for a zero cross product.
- * Where the plain products overflow (coordinates beyond ~1e150) or
- * underflow, the vertices are first scaled by one power of two (exact up to
- * subnormal tails), which leaves the direction unchanged. *nonzero is 1
- * when the exact cross product is certainly nonzero (see above), else 0. */
+/* 1 when every coordinate is within the fast kernel's range (2^200). */
+static int triangle_in_range(const double a[3], const double b[3], const double c[3])
+{
+    return fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))) <= 0x1p200;
+}
+
+/* The exact cross product (b - a) x (c - a), scaled by one power of two. */
+static void triangle_normal_exact(const double a[3], const double b[3], const double c[3], xp n[3])
+{
+    int e = pow2_exponent(fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))));
+    xp e1[3], e2[3], tmp;
+    for (int k = 0; k < 3; k++) {
+        double ak = pow2_scale(a[k], -e);
+        xp_diff(&e1[k], pow2_scale(b[k], -e), ak);
+        xp_diff(&e2[k], pow2_scale(c[k], -e), ak);
+    }
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        xp_mul(&n[k], &e1[i], &e2[j]);
+        xp_mul(&tmp, &e1[j], &e2[i]);
+        xp_sub(&n[k], &n[k], &tmp);
+    }
+}
+
 int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
                    int *nonzero)
 {
-    double e1[3], e2[3], n[3], p[3], q[3];
-    *nonzero = 0;
-    v3_sub(e1, b, a);
-    v3_sub(e2, c, a);
-    /* v3_cross written out (the same operations, so the same bits) to keep
-     * the two products of each component for cross_certainly_nonzero. */
+    /* The double-double plane where it is good to ~2^-20 relative (its
+     * largest component above 2^20 times every component's error bound);
+     * else the exact one: tiny triangles (products below the underflow
+     * threshold), huge coordinates, near-collinear vertices. */
+    if (triangle_in_range(a, b, c)) {
+        tri_plane tp;
+        triangle_plane_dd(a, b, c, &tp);
+        double v[3], big = 0.0, err = 0.0;
+        for (int k = 0; k < 3; k++) {
+            v[k] = tp.n[k].hi;
+            big = fmax_nan(big, fabs(v[k]));
+            err = fmax_nan(err, tp.err[k]);
+        }
+        if (big > 0x1p20 * err) {
+            *nonzero = 1;
+            return unit3_accurate(normal, v);
+        }
+    }
+    xp n[3];
+    triangle_normal_exact(a, b, c, n);
+    double v[3];
+    for (int k = 0; k < 3; k++) {
+        double lo;
+        xp_dd(&n[k], &v[k], &lo);
+    }
+    *nonzero = xp_sign(&n[0]) != 0 || xp_sign(&n[1]) != 0 || xp_sign(&n[2]) != 0;
+    return *nonzero && unit3_accurate(normal, v);
+}
+
+/*
+ * The exact path of the crossing parameter: every coordinate scaled by one
+ * power of two (the ray's direction by its own), the edges and a - o exact
+ * as two parts, N = e1 x e2, num = N.(a - o) and den = N.dir as exact
+ * expansions; core/ratio.c decides den != 0 and tmin <= t <= tmax exactly
+ * and rounds t = num/den to a double-double; t = t' 2^(e - e_dir).
+ */
+static int triangle_crossing_exact(const isect_ray *ray, const double a[3], const double b[3],
+                                   const double c[3], double *t_hi, double *t_lo, int *enter,
+                                   int *t_shift_out, int *e_out)
+{
+    double m = fmax_nan(max_abs3(ray->org), fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))));
+    int e = pow2_exponent(m), e_dir = pow2_exponent(max_abs3(ray->dir));
+    int t_shift = e - e_dir;
+    xp e1[3], e2[3], A[3], n[3], num, den, tmp;
+    for (int k = 0; k < 3; k++) {
+        double ak = pow2_scale(a[k], -e);
+        xp_diff(&e1[k], pow2_scale(b[k], -e), ak);
+        xp_diff(&e2[k], pow2_scale(c[k], -e), ak);
+        xp_diff(&A[k], ak, pow2_scale(ray->org[k], -e));
+    }
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
-        p[k] = e1[i] * e2[j];
-        q[k] = e1[j] * e2[i];
-        n[k] = p[k] - q[k];
+        xp_mul(&n[k], &e1[i], &e2[j]);
+        xp_mul(&tmp, &e1[j], &e2[i]);
+        xp_sub(&n[k], &n[k], &tmp);
     }
-    double len = v3_normalize(normal, n);
-    if (len > 0.0 && len <= DBL_MAX) {
-        *nonzero = cross_certainly_nonzero(a, b, c, p, q, n);
-        return 1;
-    }
-    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
-    m = fmax(m, fmax(fabs(b[0]), fmax(fabs(b[1]), fabs(b[2]))));
-    m = fmax(m, fmax(fabs(c[0]), fmax(fabs(c[1]), fabs(c[2]))));
-    if (m == 0.0)
-        return 0;
-    int e = -ilogb(m);
+    xp_set(&num, 0.0);
+    xp_set(&den, 0.0);
     for (int k = 0; k < 3; k++) {
-        double ak = ldexp(a[k], e);
-        e1[k] = ldexp(b[k], e) - ak;
-        e2[k] = ldexp(c[k], e) - ak;
+        xp_add_mul(&num, &n[k], &A[k]);
+        xp_scale(&tmp, &n[k], pow2_scale(ray->dir[k], -e_dir));
+        xp_add(&den, &den, &tmp);
     }
-    v3_cross(n, e1, e2);
-    len = v3_normalize(normal, n);
-    return len > 0.0 && len <= DBL_MAX;
+    int in_range;
+    if (!ratio_decide(&num, &den, pow2_scale(ray->tmin, -t_shift),
+                      pow2_scale(ray->tmax, -t_shift), &in_range, t_hi, t_lo)
+        || !in_range)
+        return 0;
+    *enter = xp_sign(&den) < 0;
+    *t_shift_out = t_shift;
+    *e_out = e;
+    return 1;
+}
+
+int triangle_record(const isect_ray *ray, const double a[3], const double b[3], const double c[3],
+                    const double *normal, double u, double v, isect_hit *out)
+{
+    double own_normal[3];
+    if (normal == NULL) {
+        int nonzero;
+        if (!triangle_plane(a, b, c, own_normal, &nonzero))
+            return 0;
+        normal = own_normal;
+    }
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    vdd t;
+    int enter;
+    double point[3];
+    int fast = 0;
+    if (triangle_in_range(a, b, c) && lane_ray_in_range(&lr, 0x1p200)) {
+        tri_plane tp;
+        triangle_plane_dd(a, b, c, &tp);
+        tri_crossing tc;
+        const vd av[3] = { a[0], a[1], a[2] }, zero[3] = { 0.0, 0.0, 0.0 };
+        tri_crossing_solve(&tp, av, zero, 0.0, &lr, &tc);
+        if (tc.out)
+            return 0;
+        if (tc.in) {
+            fast = 1;
+            t = tc.t;
+            enter = tc.enter;
+            lane_point_on_ray(&lr, t, point);
+        }
+    }
+    if (!fast) {
+        int t_shift, e;
+        if (!triangle_crossing_exact(ray, a, b, c, &t.hi, &t.lo, &enter, &t_shift, &e))
+            return 0;
+        /* the point from t as a double-double, in the scaled units */
+        isect_ray scaled;
+        for (int k = 0; k < 3; k++) {
+            scaled.org[k] = pow2_scale(ray->org[k], -e);
+            scaled.dir[k] = pow2_scale(ray->dir[k], -(e - t_shift));
+        }
+        scaled.tmin = -INFINITY;
+        scaled.tmax = INFINITY;
+        lane_ray sl;
+        lane_ray_from(&sl, &scaled);
+        lane_point_on_ray(&sl, t, point);
+        for (int k = 0; k < 3; k++)
+            point[k] = pow2_scale(point[k], e);
+        t.hi = pow2_scale(t.hi, t_shift);
+        if (!isfinite(t.hi))
+            return 0; /* beyond the double range: not a point of the ray */
+    }
+    out->t = fmin(fmax(t.hi, ray->tmin), ray->tmax) + 0.0;
+    v3_copy(out->point, point);
+    v3_copy(out->normal, normal);
+    out->uv[0] = u;
+    out->uv[1] = v;
+    out->prim = -1;
+    out->kind = enter ? ISECT_ENTER : ISECT_EXIT;
+    return 1;
 }
 
 int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_params *prm,

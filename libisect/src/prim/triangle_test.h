@@ -92,27 +92,6 @@ static ALWAYS_INLINE int barycentric_weights(const double pa[2], const double pb
     return 0;
 }
 
-/*
- * The epsilon policy's parallel test |n.d| > eps |d| (n unit) without |d|
- * in the common case. v3_norm(d) = fl(m fl(sqrt(s))) with m = max|d_k| and
- * s = fl(x^2 + y^2 + z^2), |x|, |y|, |z| <= 1 (each d_k/m rounded): s <= 3,
- * and by the monotonicity of rounded operations |d| <= fl(m * SQRT3_UP) for
- * any SQRT3_UP >= fl(sqrt(3)); so fl(eps |d|) <= fl(eps fl(m SQRT3_UP)), and
- * nd beyond the latter passes the exact test too. Otherwise (a NaN or
- * infinite bound included) |d| is computed here exactly as ray_frame_shear
- * does. A frame that already has |d| (mesh, polygon) uses it directly.
- */
-#define SQRT3_UP 1.7320508075688776 /* > sqrt(3) = 1.73205080756887729... */
-static ALWAYS_INLINE int not_parallel(const ray_frame *f, const double dir[3], double nd, double eps)
-{
-    if (f->dir_len >= 0.0) /* the frame has |dir| (meshes, polygons): use it */
-        return nd > eps * f->dir_len;
-    double m = v3_max_abs_finite(dir);
-    if (nd > eps * (m * SQRT3_UP))
-        return 1;
-    return nd > eps * v3_norm(dir);
-}
-
 /* The side of the frame origin against all three edges: the common sign
  * (see triangle_hit_framed) or 0, with the projected vertices and the edge
  * determinants of (pb, pc), (pc, pa), (pa, pb) for the weights. */
@@ -138,42 +117,29 @@ static ALWAYS_INLINE int triangle_side(const ray_frame *f, const double a[3], co
     return s;
 }
 
-/* The test: the sides (triangle_side), then the plane, passed in (normal
- * and nonzero as triangle_plane gives them) or, with normal NULL, computed
- * here, only for the few faces whose sides agree. */
+/* The test: the sides (triangle_side) decide whether the ray crosses the
+ * triangle — no epsilon (revision 2), the exact test alone; then, for the
+ * few faces whose sides agree, triangle_record finds where (the crossing
+ * parameter to within 4 ulp, decided exactly against [tmin, tmax]) and
+ * writes the record. normal: the face's unit normal if the caller keeps it
+ * (a mesh; then nonzero is 1), or NULL. */
 static ALWAYS_INLINE int triangle_hit(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
                                       const double a[3], const double b[3], const double c[3],
                                       const double *normal, int nonzero, isect_hit *out)
 {
+    (void)prm;
     double pa[3], pb[3], pc[3], det[3];
     int s = triangle_side(f, a, b, c, pa, pb, pc, det);
     if (s == 0)
         return 0;
-    double own_normal[3];
-    if (normal == NULL) {
-        if (!triangle_plane(a, b, c, own_normal, &nonzero))
-            return 0;
-        normal = own_normal;
-    }
-    /* Epsilon policy: parallel when |n.d| <= eps |n| |d| (n is unit here). */
-    if (!not_parallel(f, ray->dir, fabs(v3_dot(normal, ray->dir)), prm->eps))
-        return 0;
-    /* Rounding can leave a nonzero cross product (and a 2D sliver) for
-     * exactly collinear vertices; zero area is decided exactly, unless the
-     * rounded cross product already proves it nonzero. */
+    /* Rounding can leave a nonzero 2D sliver for exactly collinear
+     * vertices; zero area is decided exactly. */
     if (!nonzero && collinear3(a, b, c))
         return 0;
-
     double w[3];
     if (!barycentric_weights(pa, pb, pc, s, det, w))
         return 0;
-    /* Interpolating the sheared z gives t; at a vertex the weights are
-     * exactly (1, 0, 0), so every face through it reports the same t. */
-    double t = w[0] * pa[2] + w[1] * pb[2] + w[2] * pc[2];
-    hit_set(out, ray, t, normal, -1, hit_kind_from_normal(ray->dir, normal));
-    out->uv[0] = w[1];
-    out->uv[1] = w[2];
-    return 1;
+    return triangle_record(ray, a, b, c, normal, w[1], w[2], out);
 }
 
 #endif /* ISECT_TRIANGLE_TEST_H */
