@@ -101,7 +101,8 @@ static int polygon_plane_from_exact(const double *v, const int32_t *idx, int n, 
         double sh, sl;
         xp_dd(&sum[k], &sh, &sl);
         double q = sh / n;
-        double r = (sh - q * n) + sl; /* q n exact: n small, q rounded */
+        vdd qn = two_prod(q, (double)n); /* q n needs more than 53 bits */
+        double r = ((sh - qn.hi) - qn.lo) + sl;
         pp->m_hi[k] = pow2_scale(q, e);
         pp->m_lo[k] = pow2_scale(r / n, e);
     }
@@ -221,7 +222,8 @@ static int polygon_crossing_exact(const isect_ray *ray, const double *v, const i
         xp_scale(&tmp, &tmp, -pow2_scale(ray->org[k], -e));
         xp_add(&tmp, &tmp, &sum[k]);
         xp_add_mul(&num, &normal[k], &tmp);
-        xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir) * n);
+        xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir));
+        xp_scale(&tmp, &tmp, (double)n); /* n d_k rounded would not be exact */
         xp_add(&den, &den, &tmp);
     }
     int in_range;
