@@ -171,6 +171,60 @@ static ALWAYS_INLINE vm lane_ray_in_range(const lane_ray *ray, double org_bound)
                   vm_and(vd_ge(d_max, vd_set1(0x1p-200)), vd_le(d_max, vd_set1(0x1p200))));
 }
 
+/*
+ * One certified Newton step on a quadratic line function (a sphere's,
+ * ellipsoid's, cylinder's or general quadric's Q(o + t dir) = A t^2 + 2B t
+ * + C), at a start t0: from r = Q(t0) (within e_r), p = Q'(t0)/2 (within
+ * e_p) and a = A (with a_up >= |A|), the step sigma = r/(2p) (1 + c), c =
+ * a r/(4p^2): Newton's step with the quadratic's own curvature term (the
+ * exact small root of r + 2p h + a h^2 = 0 is -r/(2p) (1 + c + 2c^2 +
+ * ...)), so the residual left at x = t0 - sigma is of third order, a sigma^2
+ * |c| (2 + |c|), and a start off by u|t| lands within a tiny fraction of an
+ * ulp. Kantorovich's bound for the quadratic is sharp and cheap: with eta
+ * >= |Q(x)| (that term, the errors of r and p, and the step's roundings,
+ * 16u |sigma| |p|) and m = 2(|p| - e_p - |a| |sigma|) <= |Q'(x)|, if
+ * 4 |a| eta <= m^2 there is exactly one root within rho = 2 eta/m of x,
+ * and Q' keeps its sign there: the root is an entry into Q < 0 when p < 0.
+ * Taken only when the shortfall (e_p + |a| |sigma|)/|p| <= 1/4 (so m >=
+ * 1.5|p|) and |c| <= 1/16. One division (1/(2p)).
+ */
+typedef struct lane_newton {
+    vd t;      /* t0 - sigma, rounded */
+    vd step;   /* sigma */
+    vd rho;    /* |root - (t0 - sigma)| <= rho, before t's rounding */
+    vd err;    /* |root - t| <= err */
+    vm ok;     /* the bound holds: one root, within err */
+    vm enter;  /* Q' < 0 at the root */
+} lane_newton;
+
+static ALWAYS_INLINE void lane_newton_certify(vd t0, vd r, vd e_r, vd p, vd e_p, vd a, vd a_up,
+                                              lane_newton *out)
+{
+    const double u = 0x1p-53;
+    vd inv_2p = vd_div(vd_set1(0.5), p);
+    vd newton = vd_mul(r, inv_2p);
+    vd curv = vd_mul(vd_mul(a, newton), inv_2p);
+    vd step = vd_add(newton, vd_mul(newton, curv));
+    out->step = step;
+    out->t = vd_sub(t0, step);
+    vd up = vd_set1(1.0 + 8.0 * u);
+    vd step_abs = vd_mul(vd_abs(step), up);
+    vd c_abs = vd_abs(curv);
+    vd inv_2p_abs = vd_mul(vd_abs(inv_2p), up);
+    vd shortfall = vd_mul(vd_mul(vd_add(e_p, vd_mul(a_up, step_abs)), vd_set1(2.0)), inv_2p_abs);
+    vd curvature = vd_mul(vd_mul(a_up, vd_mul(step_abs, step_abs)),
+                          vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs)));
+    vd eta = vd_add(vd_add(curvature, e_r),
+                    vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(vd_set1(16.0 * u), vd_abs(p))), step_abs));
+    vm kantorovich = vd_le(vd_mul(vd_mul(vd_set1(4.0), a_up), eta),
+                           vd_mul(vd_set1(2.25 * (1.0 - 8.0 * u)), vd_mul(p, p)));
+    out->rho = vd_mul(vd_mul(vd_set1(8.0 / 3.0), eta), inv_2p_abs);
+    out->ok = vm_and(vm_and(vd_le(shortfall, vd_set1(0.25)), vd_le(c_abs, vd_set1(0.0625))),
+                     kantorovich);
+    out->err = vd_mul(vd_add(out->rho, vd_mul(vd_set1(u), vd_abs(out->t))), up);
+    out->enter = vd_lt(p, vd_zero());
+}
+
 /* The number of set bits of a lane mask (LANE_W <= 8). */
 static ALWAYS_INLINE int lane_count(unsigned bits)
 {

@@ -245,45 +245,19 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
     vd pp = vd_add(vd_add(p0, p1), p2);
     vd e_p = vd_add(vd_mul(vd_mul(vd_set1(4.0), u), vd_add(vd_add(vd_abs(p0), vd_abs(p1)), vd_abs(p2))),
                     vd_mul(vd_set1(1.0 + 2.0 * SPHERE_LANES_U), vd_mul(d_max, l_sum)));
-    /* The step: Newton's R/(2P), times (1 + c), c = D R/(4 P^2), the
-     * quadratic's own curvature term (the exact small root of R + 2P h +
-     * D h^2 = 0 is -R/(2P) (1 + c + 2c^2 + ...)): the residual it leaves is
-     * of third order, D sigma^2 |c| (2 + |c|), so even a start off by u|t|
-     * lands within a tiny fraction of an ulp, and v at the root is accurate
-     * to u r for a sphere 2^40 radii away. */
-    vd inv_2p = vd_div(vd_set1(0.5), pp);
-    vd newton = vd_mul(r, inv_2p);
-    vd curv = vd_mul(vd_mul(pl->dd, newton), inv_2p);
-    vd step = vd_add(newton, vd_mul(newton, curv));
-    vd t = vd_sub(t0, step);
-
-    /* eta >= |Q| at t0 - step (before t's rounding): the curvature term,
-     * the errors of R and P, and the roundings of the step (16u|step||P|). */
-    vd up = vd_set1(1.0 + 8.0 * SPHERE_LANES_U);
-    vd step_abs = vd_mul(vd_abs(step), up);
-    vd c_abs = vd_abs(curv);
-    vd inv_2p_abs = vd_mul(vd_abs(inv_2p), up);
-    vd shortfall = vd_mul(vd_mul(vd_add(e_p, vd_mul(pl->d_up, step_abs)), vd_set1(2.0)), inv_2p_abs);
-    vd curvature = vd_mul(vd_mul(pl->d_up, vd_mul(step_abs, step_abs)),
-                          vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs)));
-    vd eta = vd_add(vd_add(curvature, e_r),
-                    vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(vd_set1(16.0 * SPHERE_LANES_U), vd_abs(pp))),
-                           step_abs));
-    vm kantorovich = vd_le(vd_mul(vd_mul(vd_set1(4.0), pl->d_up), eta),
-                           vd_mul(vd_set1(2.25 * (1.0 - 8.0 * SPHERE_LANES_U)), vd_mul(pp, pp)));
-    vd rho = vd_mul(vd_mul(vd_set1(8.0 / 3.0), eta), inv_2p_abs); /* |root - (t0 - step)| */
+    lane_newton nt;
+    lane_newton_certify(t0, r, e_r, pp, e_p, pl->dd, pl->d_up, &nt);
     /* v = f + (t0 - step) d is then within rho |d| of the vector to the
      * exact hit: the normal is certified when that is below u r (a grazing
      * ray's is not: it defers). */
-    vm normal_ok = vd_le(vd_mul(vd_mul(rho, d_max), vd_set1(2.0)),
+    vm normal_ok = vd_le(vd_mul(vd_mul(nt.rho, d_max), vd_set1(2.0)),
                          vd_set1(SPHERE_LANES_U * sp->r));
-    rt->ok = vm_and(vm_and(vd_le(shortfall, vd_set1(0.25)), vd_le(c_abs, vd_set1(0.0625))),
-                    vm_and(kantorovich, normal_ok));
-    rt->err = vd_mul(vd_add(rho, vd_mul(u, vd_abs(t))), up);
-    rt->t = t;
-    rt->enter = vd_lt(pp, vd_zero());
+    rt->ok = vm_and(nt.ok, normal_ok);
+    rt->err = nt.err;
+    rt->t = nt.t;
+    rt->enter = nt.enter;
     for (int k = 0; k < 3; k++)
-        rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(step, d[k]));
+        rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
 }
 
 /* A refined root's verdict: in [tmin, tmax] and within 3.5u|t| (report it),
