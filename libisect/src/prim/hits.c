@@ -5,6 +5,7 @@
  */
 #include "prim/prim.h"
 
+#include "core/predicates.h"
 #include "core/vec3.h"
 
 #include <string.h>
@@ -19,6 +20,20 @@ void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3
     h->uv[1] = 0.0;
     h->prim = prim;
     h->kind = kind;
+}
+
+void hit_set_dd(isect_hit *h, const isect_ray *ray, double t_hi, double t_lo,
+                const double normal[3], int32_t prim, int32_t kind)
+{
+    hit_set(h, ray, fmin(fmax(t_hi, ray->tmin), ray->tmax), normal, prim, kind);
+    for (int k = 0; k < 3; k++) {
+        double p = t_hi * ray->dir[k];
+        double p_err = product_error(t_hi, ray->dir[k], p);
+        double s = ray->org[k] + p;
+        double s_virtual = s - ray->org[k];
+        double s_err = (ray->org[k] - (s - s_virtual)) + (p - s_virtual);
+        h->point[k] = s + ((s_err + p_err) + t_lo * ray->dir[k]);
+    }
 }
 
 int32_t hit_kind_from_normal(const double dir[3], const double normal[3])

@@ -41,6 +41,15 @@
 void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3],
              int32_t prim, int32_t kind);
 
+/* hit_set for a crossing decided to lie in [tmin, tmax] whose parameter is
+ * known as the double-double t_hi + t_lo (world units): t is t_hi clamped
+ * into [tmin, tmax] (which its rounding may have left by an ulp), the point
+ * org + (t_hi + t_lo) dir with one rounding per coordinate (error-free
+ * products and sums), so within half an ulp plus |dir| |t error| of the
+ * exact crossing point even when |org| is far larger than the point. */
+void hit_set_dd(isect_hit *h, const isect_ray *ray, double t_hi, double t_lo,
+                const double normal[3], int32_t prim, int32_t kind);
+
 /* ENTER/EXIT from the sign of dir.normal (normal outward or front-facing). */
 int32_t hit_kind_from_normal(const double dir[3], const double normal[3]);
 
@@ -75,7 +84,7 @@ static inline int64_t batch_record(isect_hit *rec, int found)
 
 ISECT_DECLARE_SHAPE(plane)        /* plane.c    (contains: unused, thin)     */
 ISECT_DECLARE_SHAPE(sphere)       /* sphere.c                                */
-ISECT_DECLARE_SHAPE(ellipsoid)    /* sphere.c: the unit sphere, scaled       */
+ISECT_DECLARE_SHAPE(ellipsoid)    /* ellipsoid.c                             */
 ISECT_DECLARE_SHAPE(aabb)         /* box.c                                   */
 ISECT_DECLARE_SHAPE(triangle)     /* triangle.c (contains: unused, thin)     */
 ISECT_DECLARE_SHAPE(polygon)      /* polygon.c  (contains: unused, thin)     */

@@ -1,0 +1,114 @@
+/*
+ * ddx.h — double-double values that carry a bound on their own error, for
+ * the certified paths of the quadric family (scalar code).
+ *
+ * A ddx is hi + lo (renormalised: hi = fl(hi + lo)) together with err, a
+ * bound on |exact - (hi + lo)|. Inputs enter exactly (a double, or the
+ * difference of two doubles by TwoSum); every operation adds the bound of
+ * its own roundings to the propagated ones, so the certifying code compares
+ * plain numbers against honest bounds (forward error analysis done by the
+ * program, Shewchuk's filters in double-double form). The bounds:
+ *   add:  ex + ey + u |x.lo + y.lo| + u |s.lo + (x.lo + y.lo)|,
+ *   mul:  |x| ey + |y| ex + ex ey + the dropped x.lo y.lo and the rounded
+ *         cross terms (u |x.hi y.lo| + u |x.lo y.hi| + u |their sum| + u |lo|),
+ * each widened by 2^-40 (for the roundings of the bounds themselves) plus
+ * DDX_TINY, which covers partial products that fall below the normal range
+ * (the callers scale their numbers near 1, so only components 2^-400 below
+ * the rest can get there). Exact results (err 0) stay exact only when no
+ * operation rounded; anything else certifies with a tiny err > 0.
+ */
+#ifndef ISECT_DDX_H
+#define ISECT_DDX_H
+
+#include "core/predicates.h"
+
+#include <math.h>
+
+#define DDX_U    0x1p-53
+#define DDX_TINY 0x1p-1000
+#define DDX_WIDEN (1.0 + 0x1p-40)
+
+typedef struct ddx {
+    double hi, lo, err;
+} ddx;
+
+static inline ddx ddx_two_sum(double a, double b, double err)
+{
+    ddx r;
+    r.hi = a + b;
+    double b_virtual = r.hi - a;
+    double a_virtual = r.hi - b_virtual;
+    r.lo = (a - a_virtual) + (b - b_virtual);
+    r.err = err;
+    return r;
+}
+
+/* a (exact) */
+static inline ddx ddx_of(double a)
+{
+    ddx r = { a, 0.0, 0.0 };
+    return r;
+}
+
+/* a - b, exact */
+static inline ddx ddx_diff(double a, double b)
+{
+    return ddx_two_sum(a, -b, 0.0);
+}
+
+static inline double ddx_abs(ddx x)
+{
+    return fabs(x.hi) + fabs(x.lo);
+}
+
+static inline ddx ddx_neg(ddx x)
+{
+    ddx r = { -x.hi, -x.lo, x.err };
+    return r;
+}
+
+static inline ddx ddx_add(ddx x, ddx y)
+{
+    ddx s = ddx_two_sum(x.hi, y.hi, 0.0);
+    double low = x.lo + y.lo;
+    double lo = s.lo + low;
+    ddx r = ddx_two_sum(s.hi, lo, 0.0);
+    double rounding = DDX_U * (fabs(low) + fabs(lo));
+    r.err = (x.err + y.err + rounding) * DDX_WIDEN + (rounding != 0.0 ? DDX_TINY : 0.0);
+    return r;
+}
+
+static inline ddx ddx_sub(ddx x, ddx y)
+{
+    return ddx_add(x, ddx_neg(y));
+}
+
+static inline ddx ddx_mul(ddx x, ddx y)
+{
+    double p = x.hi * y.hi;
+    double p_err = product_error(x.hi, y.hi, p);
+    double c1 = x.hi * y.lo, c2 = x.lo * y.hi;
+    double cross = c1 + c2;
+    double lo = p_err + cross;
+    ddx r = ddx_two_sum(p, lo, 0.0);
+    /* cross == 0: both cross terms vanish and lo = p_err exactly */
+    double rounding = cross == 0.0 && c1 == 0.0 ? 0.0
+                    : DDX_U * (fabs(c1) + fabs(c2) + fabs(cross) + fabs(lo))
+                      + fabs(x.lo * y.lo) * (1.0 + DDX_U);
+    double propagated = ddx_abs(x) * y.err + ddx_abs(y) * x.err + x.err * y.err;
+    int inexact = rounding != 0.0 || (p != 0.0 && fabs(p) < 0x1p-969);
+    r.err = (propagated + rounding) * DDX_WIDEN + (inexact ? DDX_TINY : 0.0);
+    return r;
+}
+
+static inline ddx ddx_mul_d(ddx x, double d)
+{
+    return ddx_mul(x, ddx_of(d));
+}
+
+static inline ddx ddx_sqr(ddx x)
+{
+    return ddx_mul(x, x);
+}
+
+#endif /* ISECT_DDX_H */
