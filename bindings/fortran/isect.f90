@@ -36,6 +36,10 @@
 ! Aliasing: C allows isect_xform_ray(x, r, r); Fortran forbids passing one
 ! variable to two arguments when one of them is changed, so use a copy.
 !
+! Secondary rays: isect_spawn_ray(shape, hit, dir, out) makes the ray that
+! leaves shape at one of its hits (reflection, refraction, shadow rays)
+! without meeting that surface again at t ~ 0.
+!
 ! Meshes: a mesh is an opaque C object behind a type(c_ptr) handle.
 ! isect_mesh_create makes it (copying the input; vertex indices are 0-based
 ! as in C), isect_make_mesh_shape wraps the handle in an ISECT_MESH shape,
@@ -52,11 +56,11 @@ module isect
     ! Version of the header this module was written for (see the note above
     ! for the names).
     integer(c_int), parameter, public :: ISECT_VERSION_MAJOR = 1
-    integer(c_int), parameter, public :: ISECT_VERSION_MINOR = 0
+    integer(c_int), parameter, public :: ISECT_VERSION_MINOR = 1
     integer(c_int), parameter, public :: ISECT_VERSION_PATCH = 0
     integer(c_int), parameter, public :: ISECT_HEADER_VERSION = &
         ISECT_VERSION_MAJOR * 10000 + ISECT_VERSION_MINOR * 100 + ISECT_VERSION_PATCH
-    character(len=*), parameter, public :: ISECT_HEADER_VERSION_STRING = "1.0.0"
+    character(len=*), parameter, public :: ISECT_HEADER_VERSION_STRING = "1.1.0"
     integer(c_int), parameter, public :: ISECT_HEADER_ABI_VERSION = 1
 
     ! Status codes: functions return a count (>= 0) or one of these.
@@ -184,7 +188,7 @@ module isect
     public :: isect_point_in_polygon2_batch, isect_winding_number2_batch
     public :: isect_xform_init, isect_xform_ray, isect_xform_hits
     public :: isect_intersect, isect_intersect_batch, isect_intersect_all_batch
-    public :: isect_contains, isect_contains_batch
+    public :: isect_contains, isect_contains_batch, isect_spawn_ray
     public :: isect_mesh_create, isect_mesh_destroy, isect_mesh_check, isect_mesh_bytes
 
     public :: isect_make_ray, isect_make_shape, isect_make_mesh_shape
@@ -575,6 +579,30 @@ module isect
         end function isect_contains_batch
         module procedure fortran_contains_batch
     end interface isect_contains_batch
+
+    ! -------------------------------------------------- secondary rays
+
+    ! A ray leaving shape's surface at hit (a record that isect_intersect or a
+    ! batch call returned for shape, in world space) in direction dir (1.1):
+    ! out%org is hit%point moved along hit%normal by the fewest whole ulps
+    ! (1, 2, 4, ...) that put it strictly on the side dir points into, as the
+    ! shape's exact side test decides; out%dir = dir, out%tmin = 0,
+    ! out%tmax = +inf. Intersecting out with shape never finds the surface it
+    ! leaves at t ~ 0. ISECT_E_ARG for a hit of kind MISS or INVALID (e.g. the
+    ! closest-hit record of a ray that missed), a zero normal or a mesh face
+    ! index out of range; ISECT_E_NONFINITE for NaN/Inf in hit or dir;
+    ! ISECT_E_DEGENERATE for a zero dir or a point not near the surface.
+    interface
+        function isect_spawn_ray(shape, hit, dir, out) bind(C, name="isect_spawn_ray") &
+                result(status)
+            import :: c_int, c_double, isect_shape, isect_hit, isect_ray
+            type(isect_shape), intent(in) :: shape
+            type(isect_hit), intent(in) :: hit
+            real(c_double), intent(in) :: dir(3)
+            type(isect_ray), intent(inout) :: out
+            integer(c_int) :: status
+        end function isect_spawn_ray
+    end interface
 
     ! ------------------------------------------------------------- meshes
 

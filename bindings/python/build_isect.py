@@ -2,7 +2,9 @@
 
 The C sources of libisect are compiled *into* the extension module, so the
 installed package needs no shared library at run time. setup.py names this file
-in ``cffi_modules``.
+in ``cffi_modules``. Besides the API of isect.h the extension holds one loop of
+its own, ``pyisect_spawn_batch`` (``EXTENSION_SOURCE``), so that
+``Shape.spawn`` runs a large batch in C.
 
 The sources are looked up in these places, first match wins:
 
@@ -95,6 +97,38 @@ def cdef_from_header(header: str) -> str:
     return "\n".join(out) + "\n"
 
 
+#: C helpers of the extension itself (not part of libisect's API): loops over
+#: one libisect call so that a large batch runs in C with the GIL released
+#: (cffi releases it around every call). Thin over the C API: no geometry.
+EXTENSION_CDEF = """
+int pyisect_spawn_batch(const isect_shape *shape, const isect_hit *hits, int64_t hit_step,
+                        const double *dirs, int64_t dir_step, int64_t n, isect_ray *out,
+                        int64_t *bad);
+"""
+
+EXTENSION_SOURCE = r"""
+/* isect_spawn_ray for i = 0 .. n-1 on hits[i * hit_step] and dirs[i * dir_step ..
+ * + 3] (a step of 0 repeats one hit or one direction), into out[i]. Stops at
+ * the first error: returns its status and sets *bad to its index (-1 when all
+ * succeed); out[bad ..] is then not written. */
+static int pyisect_spawn_batch(const isect_shape *shape, const isect_hit *hits, int64_t hit_step,
+                               const double *dirs, int64_t dir_step, int64_t n, isect_ray *out,
+                               int64_t *bad)
+{
+    int64_t i;
+    for (i = 0; i < n; i++) {
+        int status = isect_spawn_ray(shape, hits + i * hit_step, dirs + i * dir_step, out + i);
+        if (status != ISECT_OK) {
+            *bad = i;
+            return status;
+        }
+    }
+    *bad = -1;
+    return ISECT_OK;
+}
+"""
+
+
 def make_ffibuilder() -> FFI:
     """Create the FFI builder: cdef from isect.h, sources from libisect."""
     root = find_libisect()
@@ -104,9 +138,10 @@ def make_ffibuilder() -> FFI:
     headers = [root / "include" / "isect.h", *(root / "src").rglob("*.h")]
     builder = FFI()
     builder.cdef(cdef_from_header((root / "include" / "isect.h").read_text(encoding="utf-8")))
+    builder.cdef(EXTENSION_CDEF)
     builder.set_source(
         "isect._isect",
-        '#include "isect.h"\n',
+        '#include "isect.h"\n' + EXTENSION_SOURCE,
         sources=sources,
         include_dirs=[str(root / "include"), str(root / "src")],
         define_macros=[("ISECT_STATIC", None)],

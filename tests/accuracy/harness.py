@@ -13,7 +13,8 @@ t |d| < 1e-9 times the object's size (re-hitting the surface the ray leaves);
 ``exact_self_hits`` counts those the exact geometry really has (the rounded
 origin lies on the far side of the surface).  When the shape has ``spawn``
 (isect_spawn_ray, SPEC revision 2) the rays come from
-``shape.spawn(hits, directions)`` instead, origin and tmin included.
+``shape.spawn(hits, directions)`` instead, origin and tmin included (a hit it
+refuses, e.g. a TOUCH decided by eps off the surface, keeps the plain ray).
 """
 from __future__ import annotations
 
@@ -67,11 +68,31 @@ def secondary(group: RY.Group, rng: np.random.Generator) -> RY.Group | None:
     use_refl = rng.random(len(refl)) < 0.5
     dirs = np.where(use_refl[:, None], refl, rnd * np.linalg.norm(d0, axis=1)[:, None])
     if hasattr(shape, "spawn"):
-        rays = shape.spawn(first, dirs)
+        rays = spawn_all(shape, first, dirs)
         return RY.Group(group.inst, np.array(rays["org"]), np.array(rays["dir"]),
                         np.array(rays["tmin"]), np.array(rays["tmax"]))
     return RY.Group(group.inst, np.array(first["point"]), dirs, np.zeros(len(dirs)),
                     np.full(len(dirs), math.inf))
+
+
+def spawn_all(shape, first: np.ndarray, dirs: np.ndarray) -> np.ndarray:
+    """``shape.spawn(first, dirs)``; a hit it refuses (isect_spawn_ray's
+    E_DEGENERATE for a point not near the surface, such as a TOUCH decided by
+    eps off the surface) keeps the plain ray from the hit point instead."""
+    import isect
+    rays = np.empty(len(first), dtype=isect.RAY_DTYPE)
+    lo = 0
+    while lo < len(first):
+        try:
+            rays[lo:] = shape.spawn(first[lo:], dirs[lo:])
+            break
+        except isect.IsectError as error:
+            bad = lo + int(error.index)
+            if bad > lo:
+                rays[lo:bad] = shape.spawn(first[lo:bad], dirs[lo:bad])
+            rays[bad] = (first[bad]["point"], dirs[bad], 0.0, math.inf)
+            lo = bad + 1
+    return rays
 
 
 def point_distance(inst: P.Instance, h: LibHit, r: R.RefHit, org: np.ndarray, d: np.ndarray) -> mpmath.mpf:

@@ -26,6 +26,7 @@ static const name_value op_names[] = {
     { "winding_number2", CORPUS_WINDING_NUMBER2 },
     { "polygon_normal", CORPUS_POLYGON_NORMAL },
     { "plane_from_points", CORPUS_PLANE_FROM_POINTS },
+    { "spawn", CORPUS_SPAWN },
     { NULL, 0 },
 };
 
@@ -266,6 +267,7 @@ static int expect_parse(const cJSON *item, corpus_case *c, cj_error *err)
         return 1; /* for an error nothing else is checked */
     switch (c->op) {
     case CORPUS_INTERSECT:
+    case CORPUS_SPAWN: /* the hits of the secondary ray */
         if (!cj_integer(expect, "expect", "count", 0, MAX_EXPECTED_COUNT, &value, err))
             return 0;
         c->count = (int)value;
@@ -300,6 +302,12 @@ static int inputs_parse(const cJSON *item, corpus_case *c, cj_error *err)
                                   err) &&
                transform_parse(item, c, err) && ray_parse(item, &c->ray, err) &&
                opts_parse(item, c, err);
+    case CORPUS_SPAWN:
+        /* No opts: the primary and the secondary ray use the defaults. */
+        return corpus_shape_parse(cJSON_GetObjectItemCaseSensitive(item, "shape"), &c->shape,
+                                  err) &&
+               transform_parse(item, c, err) && ray_parse(item, &c->ray, err) &&
+               cj_vector(item, "", "dir", 3, c->spawn_dir, err);
     case CORPUS_CONTAINS:
         return corpus_shape_parse(cJSON_GetObjectItemCaseSensitive(item, "shape"), &c->shape,
                                   err) &&

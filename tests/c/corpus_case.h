@@ -19,7 +19,8 @@ typedef enum corpus_op {
     CORPUS_POINT_IN_POLYGON2,
     CORPUS_WINDING_NUMBER2,
     CORPUS_POLYGON_NORMAL,
-    CORPUS_PLANE_FROM_POINTS
+    CORPUS_PLANE_FROM_POINTS,
+    CORPUS_SPAWN
 } corpus_op;
 
 /* Relative tolerances of "tol"; each defaults to 1e-12. */
@@ -42,11 +43,12 @@ typedef struct corpus_case {
     const char *name; /* points into the JSON document */
     corpus_op   op;
 
-    /* intersect / contains / mesh_check (only the shape) */
+    /* intersect / contains / mesh_check (only the shape) / spawn */
     corpus_shape shape;
     int          has_transform;
     double       transform[16];
-    isect_ray    ray;
+    isect_ray    ray;          /* intersect; spawn: the primary ray */
+    double       spawn_dir[3]; /* spawn: the secondary direction */
     int          has_opts; /* absent "opts": the checks pass NULL (the defaults) */
     isect_opts   opts;
 
@@ -59,7 +61,7 @@ typedef struct corpus_case {
 
     /* expect */
     int                  status; /* ISECT_OK or ISECT_E_* */
-    int                  count;  /* intersect */
+    int                  count;  /* intersect; spawn: the secondary ray's hits */
     int                  hits_listed; /* "hits" present (its length is count) */
     corpus_expected_hit *hits;
     int                  inside;  /* contains / point_in_polygon2 */

@@ -100,6 +100,9 @@ static void run_parsed_case(const corpus_case *c, case_report *r)
     case CORPUS_PLANE_FROM_POINTS:
         check_plane_from_points_case(c, r);
         break;
+    case CORPUS_SPAWN:
+        check_spawn_case(c, r);
+        break;
     }
 }
 

@@ -24,6 +24,12 @@
 !   mesh_check isect_mesh_check: every isect_mesh_report field (the mesh as
 !              given: no transform).
 !   polygon_normal, plane_from_points: status and values.
+!   spawn      isect_spawn_ray from the closest-hit record of the primary ray
+!              (isect_intersect_batch: the first hit, or the MISS record),
+!              with the case's direction (sdir): the status; out%dir bit for
+!              bit, tmin 0, tmax +inf, out%org within 8 ulps of the hit point;
+!              then the spawned ray's hits through isect_intersect and its
+!              closest hit through isect_intersect_batch.
 ! A mesh shape is built first with isect_mesh_create (triangle layout when
 ! every face has 3 indices, else CSR offsets; tests/cases/README.md,
 ! "Meshes"; as the C runner, also for a raw type with "faces"); a creation
@@ -39,7 +45,7 @@
 program corpus_runner
     use, intrinsic :: iso_c_binding
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
-        ieee_quiet_nan
+        ieee_quiet_nan, ieee_next_after, ieee_positive_inf
     use isect
     implicit none
 
@@ -59,7 +65,10 @@ program corpus_runner
     ! INT32_MIN, the winding of a non-finite point in batch output (as a
     ! 64-bit value: standard Fortran integers are symmetric about 0).
     integer(c_int64_t), parameter :: WINDING_INVALID = -2147483648_c_int64_t
-    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/2"
+    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/3"
+    ! op spawn: how far (in ulps of the hit point's largest coordinate) the
+    ! spawned origin may lie from the hit point, per coordinate.
+    real(c_double), parameter :: SPAWN_MAX_ULPS = 8
 
     type :: expected_hit
         real(c_double) :: t = 0, point(3) = 0, normal(3) = 0, uv(2) = 0
@@ -79,6 +88,8 @@ program corpus_runner
         logical :: has_transform = .false.
         real(c_double) :: transform(16) = 0
         type(isect_ray) :: ray = isect_ray(0.0_c_double, 0.0_c_double, 0.0_c_double, 0.0_c_double)
+        real(c_double) :: sdir(3) = 0                      ! spawn: the secondary direction
+        logical :: has_sdir = .false.
         logical :: has_opts = .false.
         type(isect_opts) :: opts
         real(c_double) :: point(3) = 0
@@ -1106,6 +1117,75 @@ contains
         end associate
     end subroutine check_mesh_check_case
 
+    ! op spawn (see the top of the file). The primary ray uses the default
+    ! options, as does the spawned one.
+    subroutine check_spawn_case()
+        type(isect_ray) :: primary(1), spawned(1), out
+        type(isect_hit) :: first(1), closest(1), hits(HIT_CAP)
+        integer(c_int64_t) :: nhit
+        integer(c_int) :: status, count
+        real(c_double) :: largest, unit, off
+        logical :: ok
+        integer :: k
+        character(len=*), parameter :: secondary = "isect_intersect of the spawned ray"
+
+        if (.not. transform_setup()) return
+        primary(1) = cc%ray
+        first(1) = guard_hit()
+        nhit = isect_intersect_batch(shape, primary, 1_c_int64_t, c_null_ptr, first)
+        if (nhit < 0) then
+            call fail("isect_intersect_batch of the primary ray: status " // itoa(nhit) // &
+                      " (a spawn case's primary ray must be valid)")
+            return
+        end if
+
+        out = isect_ray(0.0_c_double, 0.0_c_double, 0.0_c_double, 0.0_c_double)
+        status = isect_spawn_ray(shape, first(1), cc%sdir, out)
+        ok = .true.
+        call report_status("isect_spawn_ray", int(status, c_int64_t), cc%status, ok)
+        if (.not. ok .or. status /= ISECT_OK) return
+
+        if (any(transfer(out%dir, 0_c_int64_t, 3) /= transfer(cc%sdir, 0_c_int64_t, 3))) &
+            call fail("isect_spawn_ray: out%dir (expected " // rtoa(cc%sdir(1)) // " " // &
+                      rtoa(cc%sdir(2)) // " " // rtoa(cc%sdir(3)) // ", got " // &
+                      rtoa(out%dir(1)) // " " // rtoa(out%dir(2)) // " " // rtoa(out%dir(3)) // ")")
+        if (.not. (out%tmin >= 0.0_c_double .and. out%tmin <= 0.0_c_double)) &
+            call fail("isect_spawn_ray: out%tmin (expected 0, got " // rtoa(out%tmin) // ")")
+        if (ieee_is_finite(out%tmax) .or. .not. out%tmax > 0.0_c_double) &
+            call fail("isect_spawn_ray: out%tmax (expected +inf, got " // rtoa(out%tmax) // ")")
+        ! The spacing of the doubles at the hit point's largest coordinate
+        ! (C's nextafter(m, inf) - m; the smallest subnormal at 0).
+        largest = maxval(abs(first(1)%point))
+        unit = ieee_next_after(largest, ieee_value(largest, ieee_positive_inf)) - largest
+        do k = 1, 3
+            off = abs(out%org(k) - first(1)%point(k))
+            if (.not. off <= SPAWN_MAX_ULPS * unit) &
+                call fail("isect_spawn_ray: out%org(" // itoa(int(k, c_int64_t)) // ") " // &
+                          rtoa(out%org(k)) // " is more than 8 ulps from the hit point " // &
+                          rtoa(first(1)%point(k)))
+        end do
+
+        hits = guard_hit()
+        count = isect_intersect(shape, out, c_null_ptr, hits, int(HIT_CAP, c_int))
+        if (count < 0) then
+            call report_status(secondary, int(count, c_int64_t), ISECT_OK)
+            return
+        end if
+        call report_expected_hits(secondary, hits, int(count), min(int(count), HIT_CAP))
+        spawned(1) = out
+        closest(1) = guard_hit()
+        nhit = isect_intersect_batch(shape, spawned, 1_c_int64_t, c_null_ptr, closest)
+        if (nhit < 0) then
+            call fail("isect_intersect_batch of the spawned ray: status " // itoa(nhit))
+        else if (count == 0) then
+            call report_batch_record("isect_intersect_batch of the spawned ray", closest(1), &
+                                     ISECT_MISS)
+        else
+            call report_same_hit("isect_intersect_batch of the spawned ray vs its first hit", &
+                                 closest(1), hits(1))
+        end if
+    end subroutine check_spawn_case
+
     ! The case's op on what the case block gave (a mesh already built).
     subroutine run_op()
         select case (cc%op)
@@ -1123,6 +1203,8 @@ contains
             call check_polygon_normal_case()
         case ("plane_from_points")
             call check_plane_from_points_case()
+        case ("spawn")
+            call check_spawn_case()
         case default
             call fail("unknown op " // cc%op)
         end select
@@ -1141,6 +1223,8 @@ contains
         else if (cc%is_mesh .and. .not. (cc%have_mverts .and. cc%have_mfaces .and. &
                                          cc%have_midx)) then
             call fail("malformed case: a mesh line (mverts, mfaces, midx) is missing")
+        else if (cc%op == "spawn" .and. .not. cc%has_sdir) then
+            call fail("malformed case: spawn without an sdir line")
         else if (cc%op == "mesh_check" .and. .not. cc%is_mesh) then
             call fail("malformed case: mesh_check without a mesh shape")
         else if (cc%op == "mesh_check" .and. cc%status == ISECT_OK .and. &
@@ -1316,6 +1400,9 @@ contains
         case ("ray")
             apply_line = read_reals(rest, values(1:8))
             cc%ray = isect_ray(values(1:3), values(4:6), values(7), values(8))
+        case ("sdir")
+            apply_line = read_reals(rest, cc%sdir)
+            cc%has_sdir = .true.
         case ("opts")
             read (rest, *, iostat=k) ints(1), values(1)
             apply_line = k == 0

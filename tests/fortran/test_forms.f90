@@ -2,7 +2,8 @@
 ! the C form (explicit counts, type(c_ptr) opts) and the Fortran form (counts
 ! from array sizes, optional opts) give the same bits, and the helpers
 ! (isect_make_ray, isect_make_shape, isect_make_mesh_shape, the 4x4
-! isect_xform_init) build what the C API expects. Expected values are worked out by hand in the comments; the
+! isect_xform_init) build what the C API expects; isect_spawn_ray (one form)
+! makes secondary rays from the hits of either. Expected values are worked out by hand in the comments; the
 ! golden corpus (corpus_runner) covers the numerics.
 program test_forms
     use, intrinsic :: iso_c_binding
@@ -19,6 +20,7 @@ program test_forms
     call check_planar_helpers()
     call check_opts()
     call check_mesh()
+    call check_spawn()
     call finish()
 
 contains
@@ -439,5 +441,51 @@ contains
         end if
         call isect_mesh_destroy(mesh)
     end subroutine check_mesh
+
+    ! Sphere at (0,0,5), radius 1: the ray from the origin along +z enters at
+    ! (0,0,4) (normal -z). A ray spawned there along +z starts just inside
+    ! (z a few ulps above 4) and leaves at (0,0,6), t ~ 2; one spawned along
+    ! -z starts just outside and meets nothing. A MISS record and a zero
+    ! direction are refused.
+    subroutine check_spawn()
+        real(c_double), target :: data(4) = [0.0_c_double, 0.0_c_double, 5.0_c_double, 1.0_c_double]
+        real(c_double), parameter :: up(3) = [0.0_c_double, 0.0_c_double, 1.0_c_double]
+        type(isect_shape) :: shape
+        type(isect_ray) :: ray, out, rays(1)
+        type(isect_hit) :: hits(2), closest(1)
+        integer(c_int) :: status, count
+
+        shape = isect_make_shape(ISECT_SPHERE, data)
+        ray = isect_make_ray([0.0_c_double, 0.0_c_double, 0.0_c_double], up)
+        count = isect_intersect(shape, ray, hits)
+        call record(count == 2 .and. hits(1)%kind == ISECT_ENTER, "spawn: the primary ray enters")
+
+        status = isect_spawn_ray(shape, hits(1), up, out)
+        call record(status == ISECT_OK, "spawn: ISECT_OK")
+        call record(same_doubles(out%dir, up) .and. out%tmin >= 0.0_c_double .and. &
+                    out%tmin <= 0.0_c_double .and. .not. ieee_is_finite(out%tmax) .and. &
+                    out%tmax > 0.0_c_double, "spawn: dir as given, tmin 0, tmax +inf")
+        call record(out%org(3) > 4.0_c_double .and. out%org(3) < 4.0_c_double + 1.0e-14_c_double &
+                    .and. all(abs(out%org(1:2)) <= 0.0_c_double), &
+                    "spawn: origin a few ulps inside, on the side dir points into")
+        count = isect_intersect(shape, out, hits)
+        call record(count == 1 .and. hits(1)%kind == ISECT_EXIT .and. near(hits(1)%t, 2.0_c_double), &
+                    "spawn: the refracted ray leaves at t ~ 2, never meeting the entry point")
+
+        count = isect_intersect(shape, ray, hits)
+        status = isect_spawn_ray(shape, hits(1), -up, out)
+        call record(status == ISECT_OK .and. out%org(3) < 4.0_c_double, &
+                    "spawn: the reflected ray starts just outside")
+        call record(isect_intersect(shape, out, hits) == 0, "spawn: the reflected ray meets nothing")
+
+        rays(1) = isect_make_ray([3.0_c_double, 0.0_c_double, 0.0_c_double], up)
+        call record(isect_intersect_batch(shape, rays, closest) == 0 .and. &
+                    closest(1)%kind == ISECT_MISS, "spawn: a missing ray's closest record is MISS")
+        call record(isect_spawn_ray(shape, closest(1), up, out) == ISECT_E_ARG, &
+                    "spawn: a MISS record is ISECT_E_ARG")
+        count = isect_intersect(shape, ray, hits)
+        call record(isect_spawn_ray(shape, hits(1), [0.0_c_double, 0.0_c_double, 0.0_c_double], &
+                                    out) == ISECT_E_DEGENERATE, "spawn: a zero direction is ISECT_E_DEGENERATE")
+    end subroutine check_spawn
 
 end program test_forms

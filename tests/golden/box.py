@@ -14,7 +14,7 @@ from fractions import Fraction
 
 from convex import clip_planes
 from exact import qv
-from model import INF, Ctx, Hit, XRay, case, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, ray, surface_case
 
 FAMILY = "box"
 
@@ -100,4 +100,29 @@ def cases() -> list[dict]:
     c.append(case("contains: corner point", ["contains", "boundary"], op="contains", shape=b,
                   point=[1.0, -1.0, 1.0]))
     c.append(case("contains: outside point", ["contains"], op="contains", shape=b, point=[1.5, 0.0, 0.0]))
+
+    # --- revision 2: origins on the face +x and within a few ulps of it (tmin = 0)
+    d = box((-1, -0.5, 0.25), (0.7, 1.5, 2))
+    on = (0.7, 0.3, 1.1)                       # on face +x (prim 1), inside the face
+    into, out = (-1, 0.25, 0.5), (1, 0.125, -0.25)
+    c.append(surface_case("on face +x, inward: enter at t = 0, exit", [], shape=d, ray=ray(on, into)))
+    c.append(surface_case("on face +x, outward: exit at t = 0 only", [], shape=d, ray=ray(on, out)))
+    c.append(surface_case("1 ulp outside face +x, inward: enter at t ~ +1e-16", [], shape=d,
+                          ray=ray(nudged(on, 0, 1), into)))
+    c.append(surface_case("1 ulp outside face +x, outward: no hit", ["miss"], shape=d,
+                          ray=ray(nudged(on, 0, 1), out)))
+    c.append(surface_case("1 ulp inside face +x, outward: exit at t ~ +1e-16", [], shape=d,
+                          ray=ray(nudged(on, 0, -1), out)))
+    c.append(surface_case("3 ulps inside face +x, inward: exit only", [], shape=d,
+                          ray=ray(nudged(on, 0, -3), into)))
+    c.append(surface_case("2 ulps outside face -z, inward, non-unit direction", ["non-unit-dir"], shape=d,
+                          ray=ray(nudged((0.5, 1.25, 0.25), 2, -2), (-0.5, -1, 3))))
+
+    # --- revision 2: grazing (nearly parallel to a face), t to about 4 ulp
+    c.append(case("grazing: into face +y at slope 2^-38, out through +x", ["grazing", "near-parallel"], shape=b,
+                  ray=ray((-0.9, 1 + 2.0 ** -40, 0.3), (1, -(2.0 ** -38), 0.0625)), tol=TIGHT))
+    c.append(case("grazing: 2^-40 inside face +y, slope 2^-44, through x", ["grazing", "near-parallel"],
+                  shape=b, ray=ray((-5, 1 - 2.0 ** -40, 0.1), (1.5, 2.0 ** -44, -0.03125)), tol=TIGHT))
+    c.append(case("grazing: 2^-40 outside face +y, slope -2^-46: miss", ["grazing", "near-parallel", "miss"],
+                  shape=b, ray=ray((-5, 1 + 2.0 ** -40, 0.1), (1.5, -(2.0 ** -46), -0.03125))))
     return c

@@ -20,7 +20,7 @@ from fractions import Fraction
 from typing import Callable, Sequence
 
 from exact import NEAR, Real, cmp, dot, qv, refuse, rel_gap, unit
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 from plane import parallel
 
 FAMILY = "convex"
@@ -211,4 +211,41 @@ def cases() -> list[dict]:
                   shape=TETRA, point=[0.5, 0.25, 0.25]))
     c.append(case("contains: outside the cube", ["contains"], op="contains", shape=CUBE,
                   point=[1.0, 1.5, 0.0]))
+
+    # --- revision 2: origins on the slanted face of the tetrahedron and near it (tmin = 0)
+    on = (0.25, 0.25, 0.5)                       # on x + y + z = 1 (plane 3)
+    into, out = (-1, -2, -3), (0.5, 1, 1.5)
+    c.append(surface_case("tetrahedron: on the slanted face, inward: enter at t = 0", [], shape=TETRA,
+                          ray=ray(on, into)))
+    c.append(surface_case("tetrahedron: on the slanted face, outward: exit at t = 0 only", [], shape=TETRA,
+                          ray=ray(on, out)))
+    c.append(surface_case("tetrahedron: 1 ulp outside (z), inward", [], shape=TETRA,
+                          ray=ray(nudged(on, 2, 1), into)))
+    c.append(surface_case("tetrahedron: 1 ulp outside (z), outward: no hit", ["miss"], shape=TETRA,
+                          ray=ray(nudged(on, 2, 1), out)))
+    c.append(surface_case("tetrahedron: 1 ulp inside (x), outward: exit at t ~ +1e-16", [], shape=TETRA,
+                          ray=ray(nudged(on, 0, -1), out)))
+    c.append(surface_case("tetrahedron: 3 ulps inside (y), inward: exit only", [], shape=TETRA,
+                          ray=ray(nudged(on, 1, -3), into)))
+    c.append(surface_case("cube: 2 ulps outside face -x, inward", [], shape=CUBE,
+                          ray=ray(nudged((-1.0, 0.375, 0.25), 0, -2), (1, 0.125, -0.0625))))
+
+    # --- revision 2: grazing (a face nearly parallel, outside eps), t to about 4 ulp
+    c.append(case("cube: grazing into face +y at slope 2^-30", ["grazing", "near-parallel"], shape=CUBE,
+                  ray=ray((-0.75, 1 + 2.0 ** -32, 0.3), (1, -(2.0 ** -30), 0.0625)), tol=TIGHT))
+    c.append(case("tetrahedron: grazing, 2^-30 inside the slanted face, out through it", ["grazing",
+                  "near-parallel", "inside"], shape=TETRA,
+                  ray=ray((0.25, 0.25, 0.5 - 2.0 ** -30), (1, -1, 2.0 ** -27)), tol=TIGHT))
+    c.append(case("tetrahedron: the same with eps 1e-6: the face counts as parallel, out through y = 0",
+                  ["grazing", "near-parallel", "inside", "eps"], shape=TETRA,
+                  ray=ray((0.25, 0.25, 0.5 - 2.0 ** -30), (1, -1, 2.0 ** -27)), opts=opts(eps=1e-6), tol=TIGHT))
+
+    # --- revision 2: far and small, t to about 4 ulp
+    far_box = convex([(1, 0, 0, -(1e7 + 1e-3)), (-1, 0, 0, 1e7), (0, 1, 0, -5e-4), (0, -1, 0, -5e-4),
+                      (0, 0, 1, -5e-4), (0, 0, -1, -5e-4)])
+    c.append(case("far: a 1e-3 cube at x = 1e7, oblique ray from the origin", ["far"], shape=far_box,
+                  ray=ray((0, 1e-4, -2e-4), (1, 2e-11, 1e-11)), tol=TIGHT))
+    far_tetra = convex([(-1, 0, 0, 6e6), (0, -1, 0, 8e6), (0, 0, -1, 0), (1, 1, 1, -(14e6 + 1e-3))])
+    c.append(case("far: a 1e-3 tetrahedron at (6e6, 8e6, 0), through its slanted face", ["far"],
+                  shape=far_tetra, ray=ray((0, 4e-4, 2e-4), (3, 4, 0)), tol=TIGHT))
     return c

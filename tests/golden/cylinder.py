@@ -30,7 +30,7 @@ from typing import Sequence
 from convex import Cand, select
 from exact import (NEAR, DesignError, Real, cross, dot, eps_le, is_zero, mp, norm2, point_on_ray, q, qv,
                    refuse, rel_gap, representable, scale, sqrt, sub, unit)
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "cylinder"
 
@@ -277,4 +277,72 @@ def cases() -> list[dict]:
                   ray=ray((-5, 0, 1), (1, 0, 0))))
     c.append(case("zero-length axis is degenerate", ["degenerate", "miss"], shape=cyl((0, 0, 1), (0, 0, 1), 1),
                   ray=ray((-5, 0, 1), (1, 0, 0))))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    # axis p0 = (1, 2, 3), a = (0, 3, 4) (|a| = 5), radius 5
+    C5 = cyl((1, 2, 3), (1, 5, 7), 5)
+    O5 = cyl((1, 2, 3), (1, 5, 7), 5, False)
+    I5 = icyl((1, 2, 3), (0, 3, 4), 5)
+    side = (1.0, 7.5, 2.0)                      # p0 + a/2 + (0, 4, -3): on the side, radial (0, 4, -3)/5
+    s_in, s_out = (0.5, -1, 0.5), (0.25, 1, -0.5)
+    cap = (3.0, 7.0, 5.5)                       # p1 + (2, 2, -1.5): on cap p1, inside its disk
+    c_in, c_out = (-0.5, -1, -1), (0.25, 1, 0.5)
+    for label, sh, extra in (("capped", C5, []), ("open", O5, ["open"]), ("infinite", I5, [])):
+        c.append(surface_case(f"{label}: on the side, inward: t = 0 and the far side", extra, shape=sh,
+                              ray=ray(side, s_in)))
+        c.append(surface_case(f"{label}: on the side, outward: t = 0 only", extra, shape=sh,
+                              ray=ray(side, s_out)))
+        c.append(surface_case(f"{label}: 1 ulp outside the side (y), inward", extra, shape=sh,
+                              ray=ray(nudged(side, 1, 1), s_in)))
+        c.append(surface_case(f"{label}: 1 ulp outside the side (y), outward: no hit", extra + ["miss"],
+                              shape=sh, ray=ray(nudged(side, 1, 1), s_out)))
+        c.append(surface_case(f"{label}: 2 ulps inside the side (z), outward: t ~ +1e-16", extra, shape=sh,
+                              ray=ray(nudged(side, 2, 2), s_out)))
+        c.append(surface_case(f"{label}: 3 ulps inside the side (y), inward", extra, shape=sh,
+                              ray=ray(nudged(side, 1, -3), s_in)))
+    c.append(surface_case("capped: on cap p1, inward: enter at t = 0 (prim 2)", ["cap"], shape=C5,
+                          ray=ray(cap, c_in)))
+    c.append(surface_case("capped: on cap p1, outward: exit at t = 0 only", ["cap"], shape=C5,
+                          ray=ray(cap, c_out)))
+    c.append(surface_case("capped: 1 ulp outside cap p1 (z), inward", ["cap"], shape=C5,
+                          ray=ray(nudged(cap, 2, 1), c_in)))
+    c.append(surface_case("capped: 1 ulp outside cap p1 (z), outward: no hit", ["cap", "miss"], shape=C5,
+                          ray=ray(nudged(cap, 2, 1), c_out)))
+    c.append(surface_case("capped: 1 ulp inside cap p1 (y), outward: t ~ +1e-16", ["cap"], shape=C5,
+                          ray=ray(nudged(cap, 1, -1), c_out)))
+
+    # --- revision 2: grazing rays (line at distance h from the axis), t to about 4 ulp
+    # direction (0, 5.5, -1) = (0, 4, -3) + a/2; the line passes at distance h along x from
+    # the axis, at axial coordinate 1/2 (t = 3)
+    def graze(h: float) -> dict:
+        return ray((1 + h, -13, 8), (0, 5.5, -1))
+    for label, sh, extra in (("capped", C5, []), ("open", O5, ["open"]), ("infinite", I5, [])):
+        c.append(case(f"{label}: grazing the side, h = 5(1 - 2^-30): two close hits", ["grazing",
+                      "near-tangent"] + extra, shape=sh, ray=graze(5 - 5 * 2.0 ** -30), tol=TIGHT))
+        c.append(case(f"{label}: grazing the side, h = 5(1 + 2^-30): miss", ["grazing", "near-tangent",
+                      "miss"] + extra, shape=sh, ray=graze(5 + 5 * 2.0 ** -30)))
+        c.append(case(f"{label}: grazing the side, h = 5(1 - 2^-44): touch within eps", ["grazing",
+                      "near-tangent"] + extra, shape=sh, ray=graze(5 - 5 * 2.0 ** -44), tol=TIGHT))
+        c.append(case(f"{label}: grazing the side, h = 5(1 - 2^-48), eps = 0: two hits", ["grazing",
+                      "near-tangent", "eps"] + extra, shape=sh, ray=graze(5 - 5 * 2.0 ** -48),
+                      opts=opts(eps=0.0), tol=TIGHT))
+    c.append(case("infinite: nearly parallel to the axis (2^-28 of |d|), exit ~1e9 away", ["grazing",
+                  "near-parallel", "inside"], shape=I5, ray=ray((2, 3, 2.25), (2.0 ** -28, 3, 4)), tol=TIGHT))
+    c.append(case("infinite: the same with eps 1e-6: parallel to the axis, no hit", ["grazing",
+                  "near-parallel", "inside", "eps", "miss"], shape=I5, ray=ray((2, 3, 2.25), (2.0 ** -28, 3, 4)),
+                  opts=opts(eps=1e-6)))
+
+    # --- revision 2: far and small, t to about 4 ulp (radial normals loose: p - axis cancels)
+    far_tol = {"t": 1e-15, "normal": 1e-5}
+    fc = cyl((1e7, 0, -1e-3), (1e7, 0, 1e-3), 1e-3)
+    c.append(case("far: capped r = 1e-3 at x = 1e7, across the side", ["far", "loose-normal"], shape=fc,
+                  ray=ray((0, 3e-4, 2.5e-4), (1, 0, 0)), tol=far_tol))
+    c.append(case("far: open r = 1e-3 at x = 1e7, across the side", ["far", "loose-normal", "open"],
+                  shape=cyl((1e7, 0, -1e-3), (1e7, 0, 1e-3), 1e-3, False),
+                  ray=ray((0, -6e-4, -5e-4), (1, 0, 0)), tol=far_tol))
+    c.append(case("far: capped, cap to cap 1e7 along the axis", ["far", "cap"],
+                  shape=cyl((0, 0, 1e7), (0, 0, 1e7 + 1e-3), 1e-3),
+                  ray=ray((2e-4, -1e-4, 0), (1e-11, 2e-11, 1)), tol=TIGHT))
+    c.append(case("far: infinite r = 1e-3 around (6e6, 8e6), oblique", ["far", "loose-normal"],
+                  shape=icyl((6e6, 8e6, 0), (0, 0, 1), 1e-3), ray=ray((0, 5e-4, 0), (3, 4, 0.5)), tol=far_tol))
     return c

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 
 from exact import dot, eps_le, norm2, point_on_ray, qv, sqrt, unit
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "ellipsoid"
 
@@ -93,4 +93,33 @@ def cases() -> list[dict]:
     c.append(case("contains: on the surface", ["contains", "boundary"], op="contains", shape=E,
                   point=[1.0, 3.0, 3.0]))
     c.append(case("contains: outside", ["contains"], op="contains", shape=E, point=[2.5, 2.75, 3.0]))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    E3 = ell((1, 2, 3), (3, 6, 1.5))
+    on = (3.0, 4.0, 4.0)                       # c + (2, 2, 1): (2/3)^2 + (1/3)^2 + (2/3)^2 = 1
+    into, out = (-1, -1, -1), (1, 0.5, 1)
+    c.append(surface_case("on the surface, inward: enter at t = 0, exit", [], shape=E3, ray=ray(on, into)))
+    c.append(surface_case("on the surface, outward: exit at t = 0 only", [], shape=E3, ray=ray(on, out)))
+    c.append(surface_case("1 ulp outside (x), inward", [], shape=E3, ray=ray(nudged(on, 0, 1), into)))
+    c.append(surface_case("1 ulp outside (x), outward: no hit", ["miss"], shape=E3,
+                          ray=ray(nudged(on, 0, 1), out)))
+    c.append(surface_case("1 ulp inside (z), outward: t ~ +1e-16", [], shape=E3,
+                          ray=ray(nudged(on, 2, -1), out)))
+    c.append(surface_case("3 ulps inside (y), inward: exit only", [], shape=E3,
+                          ray=ray(nudged(on, 1, -3), into)))
+    c.append(surface_case("2 ulps outside (z), inward, non-unit direction", ["non-unit-dir"], shape=E3,
+                          ray=ray(nudged(on, 2, 2), (-3, 0.5, -7))))
+
+    # --- revision 2: grazing at the x extreme c + (3, 0, 0): in the scaled frame the line
+    # x' = h' through y' = z' = 0 (at t = 2), t to about 4 ulp
+    def graze(hx: float) -> dict:
+        return ray((1 + 3 * hx, 2 - 12, 3 - 3), (0, 6, 1.5))
+    c.append(case("grazing: h' = 1 - 2^-30, two close hits", ["grazing", "near-tangent"], shape=E3,
+                  ray=graze(1 - 2.0 ** -30), tol=TIGHT))
+    c.append(case("grazing: h' = 1 + 2^-30, miss", ["grazing", "near-tangent", "miss"], shape=E3,
+                  ray=graze(1 + 2.0 ** -30)))
+    c.append(case("grazing: h' = 1 - 2^-44, touch within eps", ["grazing", "near-tangent"], shape=E3,
+                  ray=graze(1 - 2.0 ** -44), tol=TIGHT))
+    c.append(case("grazing: h' = 1 - 2^-48, eps = 0: two hits", ["grazing", "near-tangent", "eps"], shape=E3,
+                  ray=graze(1 - 2.0 ** -48), opts=opts(eps=0.0), tol=TIGHT))
     return c

@@ -12,7 +12,7 @@ JSON stays the source of truth; the flat files are committed so a Fortran-only
 runner needs no Python, and `--check` (run by the tests) fails when they no
 longer match the JSON. Pure Python 3 (no packages).
 
-Flat format `isect-flat/2`
+Flat format `isect-flat/3`
 --------------------------
 Line-oriented text. Each line is a key and its values separated by single
 spaces; a line starting with `#` is a comment. Lines have no length limit
@@ -28,14 +28,14 @@ A case block, in this order (lines in brackets appear only when they apply):
 
     case <id> <op>                 op: intersect | contains | mesh_check |
                                    point_in_polygon2 | winding_number2 |
-                                   polygon_normal | plane_from_points
+                                   polygon_normal | plane_from_points | spawn
     name <text to the end of the line>
     [flags <flag> ...]             the case's flags (informational)
     [malformed <reason>]           the JSON case breaks the schema: a failure
     [skip <reason>]                a case this runner does not run yet (a shape
                                    type or op added after this export): skipped
     [shape <type> <n> <flags> <named> <has_data> <ndata>]
-                                   intersect / contains / mesh_check: isect_shape
+                                   intersect / contains / mesh_check / spawn: isect_shape
                                    fields as integers (type: ISECT_* value, possibly
                                    a raw bad-input value); named = 1 when the JSON
                                    names the type (then it has a scalar function,
@@ -67,9 +67,11 @@ A case block, in this order (lines in brackets appear only when they apply):
                                    runner does): a raw type may name a type whose
                                    function reads more numbers than were given
     [transform <m1> ... <m16>]     row-major object-to-world matrix (intersect,
-                                   contains; mesh_check reports the mesh as given)
-    [ray <ox> <oy> <oz> <dx> <dy> <dz> <tmin> <tmax>]            intersect
+                                   contains, spawn; mesh_check reports the mesh as given)
+    [ray <ox> <oy> <oz> <dx> <dy> <dz> <tmin> <tmax>]            intersect; spawn: the
+                                   primary ray
     [opts <flags> <eps>]           intersect; absent: pass NULL (the defaults)
+    [sdir <x> <y> <z>]             spawn: the direction of the secondary ray
     [point <k> <x1> ... <xk>]      contains (k = 3), 2D ops (k = 2)
     [polygon <n> <x1> <y1> ... <xn> <yn>]                        2D ops
     [rule <r>]                     point_in_polygon2 (integer, passed through)
@@ -77,7 +79,9 @@ A case block, in this order (lines in brackets appear only when they apply):
     tol <t> <point> <normal> <uv> <volume> <area>
     status <s>                     expected status (ISECT_OK or ISECT_E_*), integer
     [count <c> <listed>]           intersect, status ok: hit count; listed = 1 when
-                                   the hit lines follow (else only the count is checked)
+                                   the hit lines follow (else only the count is checked);
+                                   spawn, status ok: the same for the secondary ray's hits
+                                   (status is isect_spawn_ray's)
     [hit <t> <px> <py> <pz> <nx> <ny> <nz> <u> <v> <has_uv> <prim> <kind>]
                                    one per hit, in order; kind an ISECT_* integer;
                                    has_uv = 0: uv was absent and is not checked
@@ -95,8 +99,9 @@ A case block, in this order (lines in brackets appear only when they apply):
     end
 
 Version 2 (meshes) added the mesh lines, `report`, the op mesh_check and the
-volume and area tolerances of `tol`; a version-1 runner rejects a version-2 file
-at its `format` line instead of misreading it.
+volume and area tolerances of `tol`; version 3 (secondary rays) the op spawn
+and its `sdir` line. A runner of an older version rejects a newer file at its
+`format` line instead of misreading it.
 
 Numbers: every double is written as Python's repr() of the exact double (the
 shortest decimal that reads back as the same double; hex-float strings of the
@@ -116,7 +121,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-FORMAT = "isect-flat/2"
+FORMAT = "isect-flat/3"
 DEFAULT_TOLERANCE = 1e-12
 # The tolerances of `tol`, in the order of the flat `tol` line.
 TOLERANCE_KEYS = ("t", "point", "normal", "uv", "volume", "area")
@@ -362,20 +367,20 @@ def mesh_lines(shape: dict, type_value: int, named: int) -> list[str]:
 
 
 OPS = ("intersect", "contains", "mesh_check", "point_in_polygon2", "winding_number2",
-       "polygon_normal", "plane_from_points")
+       "polygon_normal", "plane_from_points", "spawn")
 
 
 def case_body(case: dict, op: str, codes: Codes) -> list[str]:
     """The lines between `name`/`flags` and `end`."""
     out: list[str] = []
-    if op in ("intersect", "contains", "mesh_check"):
+    if op in ("intersect", "contains", "mesh_check", "spawn"):
         if op == "mesh_check" and not is_mesh(case.get("shape")):
             raise Malformed("mesh_check: the shape must be a mesh")
         out += shape_lines(case.get("shape"), codes)
         # mesh_check has no transform: the report describes the mesh as given.
         if "transform" in case and op != "mesh_check":
             out.append("transform " + fmts(vector(case["transform"], 16, "transform")))
-    if op == "intersect":
+    if op in ("intersect", "spawn"):
         ray = case.get("ray")
         if not isinstance(ray, dict):
             raise Malformed("ray: an object is required")
@@ -383,7 +388,10 @@ def case_body(case: dict, op: str, codes: Codes) -> list[str]:
         values.append(number(ray.get("tmin", 0.0), "ray.tmin"))
         values.append(number(ray.get("tmax", "inf"), "ray.tmax"))
         out.append("ray " + fmts(values))
-        if "opts" in case:
+        if op == "spawn":
+            # No opts: the primary and the secondary ray use the defaults.
+            out.append("sdir " + fmts(vector(case.get("dir"), 3, "dir")))
+        elif "opts" in case:
             opts = case["opts"]
             if not isinstance(opts, dict):
                 raise Malformed("opts: an object is required")
@@ -426,7 +434,7 @@ def expect_lines(expect, op: str, codes: Codes) -> list[str]:
     out = [f"status {codes.status[expect['status']]}"]
     if expect["status"] != "ok":
         return out                      # for an error nothing else is checked
-    if op == "intersect":
+    if op in ("intersect", "spawn"):
         count = integer(expect.get("count"), "expect.count")
         hits = expect.get("hits")
         out.append(f"count {count} {0 if hits is None else 1}")

@@ -32,6 +32,7 @@ import plane  # noqa: E402
 import polygon  # noqa: E402
 import polygon2d  # noqa: E402
 import quadric  # noqa: E402
+import spawn  # noqa: E402
 import sphere  # noqa: E402
 import transformed  # noqa: E402
 import triangle  # noqa: E402
@@ -42,7 +43,7 @@ SCHEMA = "isect-cases/1"
 GENERATOR = "tests/golden/generate.py (mpmath, 80 digits)"
 CASES_DIR = HERE.parent / "cases"
 FAMILIES = [plane, sphere, box, triangle, polygon, convex, cylinder, ellipsoid, quadric, transformed,
-            polygon2d, mesh, bad_input]
+            polygon2d, mesh, bad_input, spawn]
 WIDTH = 150
 
 
@@ -134,8 +135,11 @@ def build(mod) -> tuple[str, str]:
         g = c.pop("_group", None)
         if g is not None and g not in groups:
             groups.append(g)
+        tol_of = c.pop("_tol", None)
         try:
             c["expect"] = evaluate(c)
+            if tol_of is not None:
+                c["tol"] = {**c.get("tol", {}), **tol_of(c["expect"])}
             if hasattr(mod, "check_case"):
                 mod.check_case(c)
         except Exception as e:

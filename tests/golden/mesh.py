@@ -34,7 +34,7 @@ from typing import Sequence
 import mpmath
 
 from exact import DesignError, cross, dot, is_zero, qv, sub, to_double
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, origin_tol as _origin_tol, ray, surface_case
 import polygon
 import transformed
 import triangle
@@ -560,6 +560,60 @@ def cases() -> list[dict]:
     inside("contains on a non-manifold mesh", ["bad-input", "nonmanifold"], book(), (0, 0, 0.5))
     inside("contains, NaN point", ["bad-input", "nonfinite"], cq, (math.nan, 0.5, 0.5))
     check("report of a mesh with a bad index", ["bad-input"], mesh([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [[0, 1, 7]]))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    top = (0.25, 0.75, 1.0)                  # on the top face, inside one triangle of it
+    into, out = (0.25, -0.5, -1), (-0.125, 0.25, 1)
+    for nm, sh, extra in (("triangle cube", ct, []), ("quad cube", cq, ["polygon-faces"])):
+        hit(f"{nm}: on the top face, inward: enter at t = 0, exit", ["origin-on-surface"] + extra, sh,
+            ray(top, into))
+        c[-1]["_tol"] = _origin_tol
+        for name, o, d, more in (("on the top face, outward: exit at t = 0 only", top, out, []),
+                                 ("1 ulp above the top face, inward", nudged(top, 2, 1), into, []),
+                                 ("1 ulp above the top face, outward: no hit", nudged(top, 2, 1), out, ["miss"]),
+                                 ("1 ulp below the top face, outward: t ~ +1e-16", nudged(top, 2, -1), out, []),
+                                 ("2 ulps below the top face, inward: exit only", nudged(top, 2, -2), into, [])):
+            c.append(surface_case(f"{nm}: {name}", extra + more, shape=sh, ray=ray(o, d)))
+    c.append(surface_case("triangle cube: on the top face's diagonal, inward (one face claims t = 0)", ["edge"],
+                          shape=ct, ray=ray((0.5, 0.5, 1.0), (0.25, -0.5, -1))))
+    c.append(surface_case("triangle cube: on the edge x = 1, z = 1, inward (one face claims t = 0)", ["edge"],
+                          shape=ct, ray=ray((1.0, 0.5, 1.0), (-1, 0.25, -0.5))))
+    c.append(surface_case("triangle cube: on the edge x = 1, z = 1, outward (one face claims t = 0)", ["edge"],
+                          shape=ct, ray=ray((1.0, 0.5, 1.0), (1, 0.25, 0.5))))
+    c.append(surface_case("octahedron: 1 ulp outside a face, inward", [], shape=oc,
+                          ray=ray(nudged((0.25, 0.25, 0.5), 0, 1), (-1, -0.5, -0.75))))
+    c.append(surface_case("octahedron: 1 ulp inside a face, outward", [], shape=oc,
+                          ray=ray(nudged((0.25, 0.25, 0.5), 0, -1), (1, 0.5, 0.75))))
+    c.append(surface_case("L prism: on the concave top face, outward", ["concave", "polygon-faces"], shape=lp,
+                          ray=ray((0.5, 1.5, 1.0), (0.25, 0.125, 1))))
+    c.append(surface_case("L prism: 1 ulp below the concave top face, outward", ["concave", "polygon-faces"],
+                          shape=lp, ray=ray(nudged((0.5, 1.5, 1.0), 2, -1), (0.25, 0.125, 1))))
+    c.append(surface_case("triangle cube scaled 2 and moved: 1 ulp outside, inward", ["transformed", "scaling",
+                          "translation", "exact-transform"], shape=ct, transform=scale2,
+                          ray=ray(nudged((1.5, 0.5, 2.5), 2, 1), (0.25, -0.5, -1))))
+
+    # --- revision 2: grazing (a face nearly parallel to the ray). Triangles and polygons use no
+    # eps, so the top face is crossed at a slope of 2^-44 (far below the default eps) and the
+    # count keeps the parity of the origin, at every eps
+    s44 = 2.0 ** -44
+    for nm, sh, extra in (("triangle cube", ct, []), ("quad cube", cq, ["polygon-faces"])):
+        hit(f"{nm}: grazing into the top face at slope 2^-44, out through x = 1", ["grazing", "near-parallel",
+            "parity"] + extra, sh, ray((-0.25, 0.375, 1 + s44 / 2), (1, 0.125, -s44)), tol=TIGHT)
+        hit(f"{nm}: the same with eps 1e-3: still two hits", ["grazing", "near-parallel", "eps"] + extra, sh,
+            ray((-0.25, 0.375, 1 + s44 / 2), (1, 0.125, -s44)), opts=opts(eps=1e-3), tol=TIGHT)
+        hit(f"{nm}: 2^-45 below the top face, rising at 2^-44: exits through it", ["grazing", "near-parallel",
+            "inside", "parity"] + extra, sh, ray((0.25, 0.375, 1 - s44 / 2), (1, 0.125, s44)), tol=TIGHT)
+        hit(f"{nm}: 2^-45 above the top face, rising: miss", ["grazing", "near-parallel", "miss", "parity"]
+            + extra, sh, ray((0.25, 0.375, 1 + s44 / 2), (1, 0.125, s44)))
+
+    # --- revision 2: far and small (t to about 4 ulp)
+    far_cube = cube_quads((1e7, 0, 0), 2.0 ** -10)
+    hit("far: quad cube of side 2^-10 at x = 1e7, oblique ray from the origin", ["far", "polygon-faces"], far_cube,
+        ray((0, 3e-4, 5e-4), (1, 2e-11, -1e-11)), tol=TIGHT)
+    far_ico = mesh([[6e6 + 1e-3 * x, 8e6 + 1e-3 * y, 1e-3 * z] for x, y, z in icosahedron()["vertices"]],
+                   icosahedron()["faces"])
+    hit("far: icosahedron of radius ~2e-3 at (6e6, 8e6, 0)", ["far", "loose-point"], far_ico,
+        ray((0, 2e-4, 3e-4), (3, 4, 0)), tol={"t": 1e-15, "point": 1e-8, "uv": 1e-6})
     return c
 
 

@@ -9,7 +9,7 @@ n = 0 is degenerate (never hit).
 from __future__ import annotations
 
 from exact import dot, eps_le, is_zero, norm2, q, qv, unit
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "plane"
 
@@ -92,4 +92,35 @@ def cases() -> list[dict]:
                   ray=ray((1e7, -1e7, 0), (1e-3, 0, 1))))
     c.append(case("zero normal is degenerate", ["degenerate", "miss"], shape=plane((0, 0, 0), 1),
                   ray=ray((0, 0, 5), (0, 0, -1))))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    tilt = plane((1, 2, 2), -6)                  # x + 2y + 2z = 6, front side +n
+    on = (2.0, 1.0, 1.0)                          # exactly on it
+    down, up = (-0.5, -1, 0.25), (0.25, 0.5, 1)   # n.d < 0 (toward the back) / > 0
+    c.append(surface_case("on the plane, toward the back: t = 0 (enter)", [], shape=tilt, ray=ray(on, down)))
+    c.append(surface_case("on the plane, toward the front: t = 0 (exit)", [], shape=tilt, ray=ray(on, up)))
+    c.append(surface_case("1 ulp in front (x), toward the plane: t ~ +1e-16", [], shape=tilt,
+                          ray=ray(nudged(on, 0, 1), down)))
+    c.append(surface_case("1 ulp in front (x), away: t < 0, no hit", ["miss"], shape=tilt,
+                          ray=ray(nudged(on, 0, 1), up)))
+    c.append(surface_case("2 ulps behind (z), toward the plane: t ~ +1e-16 (exit)", [], shape=tilt,
+                          ray=ray(nudged(on, 2, -2), up)))
+    c.append(surface_case("3 ulps behind (y), away: t < 0, no hit", ["miss"], shape=tilt,
+                          ray=ray(nudged(on, 1, -3), down)))
+    c.append(surface_case("1 ulp behind (y), toward, non-unit direction", ["non-unit-dir"], shape=tilt,
+                          ray=ray(nudged(on, 1, -1), (3, 5, 7))))
+
+    # --- revision 2: grazing (nearly parallel, outside eps), t to about 4 ulp
+    e = 2.0 ** -30
+    along = (2 + e, -1 + 2 * e, 2 * e)           # (2, -1, 0) + e (1, 2, 2): n.d = 9e
+    c.append(case("grazing from the back: n.d/(|n||d|) ~ 1.3e-9, hit at t ~ 7.2e8", ["grazing", "near-parallel"],
+                  shape=tilt, ray=ray((0, 0, 0), along), tol=TIGHT))
+    c.append(case("grazing from the front, the reversed direction", ["grazing", "near-parallel"],
+                  shape=tilt, ray=ray((0, 0, 6), (-along[0], -along[1], -along[2])), tol=TIGHT))
+    c.append(case("grazing with eps 1e-6: the plane counts as parallel (eps still applies to planes)",
+                  ["grazing", "near-parallel", "eps", "miss"], shape=tilt, ray=ray((0, 0, 0), along),
+                  opts=opts(eps=1e-6)))
+    c.append(case("grazing at slope 2^-45 with eps = 0", ["grazing", "near-parallel", "eps"],
+                  shape=plane((0, 0, 1), -0.5), ray=ray((-3, 0.25, 0.5 + 2.0 ** -40), (1, 0.5, -2.0 ** -45)),
+                  opts=opts(eps=0.0), tol=TIGHT))
     return c

@@ -6,7 +6,11 @@ Plane (isect.h): Newell's normal through the vertex centroid m = (1/n) sum v_i,
 (The seed slide writes the factor as (z_i - z_next); Newell's method has
 the sum (z_i + z_next), which is what both this reference and isect.h use.)
 N = 0 (collinear, or a self-intersecting polygon whose areas cancel) is
-degenerate.  Parallel when |N.v| <= eps|N||v|.  The plane is met at
+degenerate.  No eps is involved (SPEC revision 2: triangles, polygons and
+mesh faces use no eps at all): the exact winding test in the sheared frame
+alone decides whether the polygon is crossed; only a ray exactly parallel to
+the plane (N.v == 0 exactly) has no crossing point and is not hit.  The
+plane is met at
     t = N.(m - o) / (N.v),
 and the hit counts when the exact perturbed winding number w of the sheared
 projection (module sheared) satisfies the rule: even-odd w odd, nonzero
@@ -18,9 +22,9 @@ from fractions import Fraction
 from typing import Sequence
 
 from exact import add, cross, dot, is_zero, qv, scale, sub, unit
-from model import Ctx, Group, Hit, XRay, case, opts, ray
-from plane import parallel
+from model import TIGHT, Ctx, Group, Hit, XRay, case, nudged, opts, ray, surface_case
 from sheared import winding_sheared
+from triangle import exactly_parallel
 
 FAMILY = "polygon"
 
@@ -42,7 +46,7 @@ def rule_name(rule) -> str:
 def solve(shape: dict, r: XRay, ctx: Ctx) -> list[Hit]:
     vs = [qv(v) for v in shape["vertices"]]
     n, m = newell(vs)
-    if is_zero(n) or parallel(n, r.dir, ctx.eps, "polygon parallel"):
+    if is_zero(n) or exactly_parallel(n, r.dir, ctx):
         return []
     w = winding_sheared(vs, r.org, r.dir, ctx.exact)
     inside = (w % 2 == 1) if rule_name(shape["rule"]) == "evenodd" else (w != 0)
@@ -93,7 +97,8 @@ def cases() -> list[dict]:
     c.append(case("square: parallel", ["parallel", "miss"], shape=poly(sq), ray=ray((-1, 1, 1), (1, 0, 0))))
     c.append(case("square: ray in its plane", ["parallel", "in-plane", "miss"], shape=poly(sq),
                   ray=ray((-1, 1, 0), (1, 0.5, 0))))
-    c.append(case("square: near-parallel 1e-7, eps 1e-6", ["near-parallel", "eps", "miss"],
+    c.append(case("square: near-parallel 1e-7, eps 1e-6: still hit (revision 2: no eps for faces)",
+                  ["near-parallel", "eps"],
                   shape=poly(sq), ray=ray((-0.5, 1, 1e-7), (1, 0, -1e-7)), opts=opts(eps=1e-6)))
     c.append(case("square: near-parallel 1e-7, default eps", ["near-parallel"],
                   shape=poly(sq), ray=ray((-0.5, 1, 1e-7), (1, 0, -1e-7))))
@@ -197,4 +202,38 @@ def cases() -> list[dict]:
                   shape=poly([(0, 0), (2, 2), (2, 0), (0, 2)]), ray=up(1, 0.5)))
     c.append(case("collinear polygon is degenerate", ["degenerate", "miss"],
                   shape=poly([(0, 0, 0), (1, 1, 1), (3, 3, 3)]), ray=ray((1, 1, 0), (0, 0, 1))))
+
+    # --- revision 2: origins on a tilted concave polygon and within a few ulps of it (tmin = 0)
+    # the U (notch opening up) lifted into the plane x + 2y + 4z = 8 (Newell normal ~ (1, 2, 4))
+    tilted_u = poly([(x, y, (8 - x - 2 * y) / 4) for x, y in u_up])
+    on = (0.5, 2.5, 0.625)                        # in the left arm
+    back, front = (-0.5, -1, -1.5), (0.25, 0.5, 2)
+    c.append(surface_case("tilted U: on it, toward the back: t = 0 (enter)", ["concave", "frame-swap"],
+                          shape=tilted_u, ray=ray(on, back)))
+    c.append(surface_case("tilted U: on it, toward the front: t = 0 (exit)", ["concave"],
+                          shape=tilted_u, ray=ray(on, front)))
+    c.append(surface_case("tilted U: 1 ulp in front (z), toward it", ["concave", "frame-swap"],
+                          shape=tilted_u, ray=ray(nudged(on, 2, 1), back)))
+    c.append(surface_case("tilted U: 1 ulp in front (z), away: no hit", ["concave", "miss"],
+                          shape=tilted_u, ray=ray(nudged(on, 2, 1), front)))
+    c.append(surface_case("tilted U: 2 ulps behind (y), toward it (exit)", ["concave"],
+                          shape=tilted_u, ray=ray(nudged(on, 1, -2), front)))
+    c.append(surface_case("tilted U: 3 ulps behind (x), away: no hit", ["concave", "miss", "frame-swap"],
+                          shape=tilted_u, ray=ray(nudged(on, 0, -3), back)))
+    c.append(surface_case("tilted U: on its plane in the notch: no hit", ["concave", "miss", "frame-swap"],
+                          shape=tilted_u, ray=ray((1.5, 2, 0.625), back)))
+    c.append(surface_case("tilted U, nonzero rule: 1 ulp behind (z), toward it", ["concave", "nonzero"],
+                          shape=poly([(x, y, (8 - x - 2 * y) / 4) for x, y in u_up], "nonzero"),
+                          ray=ray(nudged(on, 2, -1), front)))
+
+    # --- revision 2: grazing rays, nearly parallel; the exact test decides at every eps
+    s45 = 2.0 ** -45
+    c.append(case("grazing: square, slope 2^-45 crossing inside", ["grazing", "near-parallel"], shape=poly(sq),
+                  ray=ray((-0.5, 1.25, s45), (1, 0.25, -s45)), tol=TIGHT))
+    c.append(case("grazing: square, slope 2^-45, eps 1e-3: still hit", ["grazing", "near-parallel", "eps"],
+                  shape=poly(sq), ray=ray((-0.5, 1.25, s45), (1, 0.25, -s45)), opts=opts(eps=1e-3), tol=TIGHT))
+    c.append(case("grazing: U, slope 2^-45 crossing the notch: miss", ["grazing", "near-parallel", "concave",
+                  "miss"], shape=poly(u_up), ray=ray((1.5, -1, 2.5 * s45), (0, 1, -s45))))
+    c.append(case("grazing: U, slope 2^-45 crossing the right arm from below", ["grazing", "near-parallel",
+                  "concave"], shape=poly(u_up), ray=ray((2.5, -1, -3.5 * s45), (0, 1, s45)), tol=TIGHT))
     return c

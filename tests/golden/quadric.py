@@ -18,7 +18,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 from exact import DesignError, dot, eps_le, norm2, point_on_ray, qv, sign, sqrt, unit
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "quadric"
 
@@ -160,4 +160,62 @@ def cases() -> list[dict]:
                   point=[3.0, 4.0, 5.0]))
     c.append(case("contains: outside the cylinder", ["contains"], op="contains", shape=CYL,
                   point=[1.0, 1.0, 0.0]))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    HYP = quad(1, 1, -1, 0, 0, 0, 0, 0, 0, -1)      # x^2 + y^2 - z^2 = 1, inside near the axis
+    on = (1.0, 1.0, 1.0)                              # grad (2, 2, -2)
+    into, out = (-1, -0.5, 0.25), (1, 0.25, -0.5)
+    c.append(surface_case("hyperboloid: on it, inward: enter at t = 0", [], shape=HYP, ray=ray(on, into)))
+    c.append(surface_case("hyperboloid: on it, outward: exit at t = 0 only", [], shape=HYP, ray=ray(on, out)))
+    c.append(surface_case("hyperboloid: 1 ulp outside (x), inward", [], shape=HYP,
+                          ray=ray(nudged(on, 0, 1), into)))
+    c.append(surface_case("hyperboloid: 1 ulp outside (x), outward: no hit", ["miss"], shape=HYP,
+                          ray=ray(nudged(on, 0, 1), out)))
+    c.append(surface_case("hyperboloid: 1 ulp inside (z), outward: t ~ +1e-16", [], shape=HYP,
+                          ray=ray(nudged(on, 2, 1), out)))
+    c.append(surface_case("hyperboloid: 3 ulps inside (y), inward", [], shape=HYP,
+                          ray=ray(nudged(on, 1, -3), into)))
+    # a quadric with all ten terms through p = (1, 0.5, -0.25), dyadic coefficients
+    k9 = [1.5, 0.75, 2, 0.5, -0.25, 0.125, 0.375, -0.625, 0.25]
+    p = (1.0, 0.5, -0.25)
+    rest = (k9[0] * p[0] ** 2 + k9[1] * p[1] ** 2 + k9[2] * p[2] ** 2 + k9[3] * p[0] * p[1]
+            + k9[4] * p[0] * p[2] + k9[5] * p[1] * p[2] + k9[6] * p[0] + k9[7] * p[1] + k9[8] * p[2])
+    GEN = quad(*k9, -rest)
+    c.append(surface_case("ten-term quadric: on it, inward: enter at t = 0", [], shape=GEN,
+                          ray=ray(p, (-1, -0.5, 0.25))))
+    c.append(surface_case("ten-term quadric: on it, outward: exit at t = 0 only", [], shape=GEN,
+                          ray=ray(p, (1, 0.5, -0.25))))
+    c.append(surface_case("ten-term quadric: 2 ulps inside (x), outward: t ~ +1e-16", [], shape=GEN,
+                          ray=ray(nudged(p, 0, -2), (1, 0.5, -0.25))))
+    c.append(surface_case("ten-term quadric: 2 ulps outside (x), outward: no hit", ["miss"],
+                          shape=GEN, ray=ray(nudged(p, 0, 2), (1, 0.5, -0.25))))
+
+    # --- revision 2: grazing the waist of the hyperboloid at (1, 0, 0), direction (0, 1, 0.5):
+    # Q = 0.75 s^2 + x^2 - 1 along the line (s = t - 4), t to about 4 ulp
+    def graze(x: float) -> dict:
+        return ray((x, -4, -2), (0, 1, 0.5))
+    c.append(case("hyperboloid: grazing at x = 1 - 2^-30, two close hits", ["grazing", "near-tangent"],
+                  shape=HYP, ray=graze(1 - 2.0 ** -30), tol=TIGHT))
+    c.append(case("hyperboloid: grazing at x = 1 + 2^-30, miss", ["grazing", "near-tangent", "miss"],
+                  shape=HYP, ray=graze(1 + 2.0 ** -30)))
+    c.append(case("hyperboloid: grazing at x = 1 - 2^-44, touch within eps", ["grazing", "near-tangent"],
+                  shape=HYP, ray=graze(1 - 2.0 ** -44), tol=TIGHT))
+    c.append(case("hyperboloid: grazing at x = 1 - 2^-50, eps = 0: two hits", ["grazing", "near-tangent",
+                  "eps"], shape=HYP, ray=graze(1 - 2.0 ** -50), opts=opts(eps=0.0), tol=TIGHT))
+
+    # --- revision 2: far and small (a sphere of radius 1e-3 seen from 1e7 away), t to about 4 ulp.
+    # The quadric's tangency test is relative to b^2 + 4|ac| (~4e14 here) while b^2 - 4ac is
+    # ~4e-6: with the default eps that is a touch, as documented; eps = 0 gives the two roots.
+    FAR_TOL = {"t": 1e-15, "point": 1e-8, "normal": 1e-5}
+    FAR = ["far", "loose-normal", "loose-point"]
+    SMALL = quad(1, 1, 1, 0, 0, 0, 0, 0, 0, -1e-6)
+    c.append(case("far: sphere quadric r = 1e-3 seen from x = -1e7, eps = 0: two hits", FAR + ["eps"],
+                  shape=SMALL, ray=ray((-1e7, 3e-4, 0), (1, 0, 0)), opts=opts(eps=0.0), tol=FAR_TOL))
+    c.append(case("far: the same with the default eps: one touch (the test is relative to b^2)",
+                  FAR + ["near-tangent"], shape=SMALL, ray=ray((-1e7, 3e-4, 0), (1, 0, 0)), tol=FAR_TOL))
+    c.append(case("far: sphere quadric from (-6e6, -8e6, 0), oblique, eps = 0", FAR + ["non-unit-dir", "eps"],
+                  shape=SMALL, ray=ray((-6e6, -8e6, 2e-4), (3, 4, 0)), opts=opts(eps=0.0), tol=FAR_TOL))
+    c.append(case("far: cylinder quadric x^2 + y^2 = 1e-6 seen from 1e7 away, eps = 0", FAR + ["eps"],
+                  shape=quad(1, 1, 0, 0, 0, 0, 0, 0, 0, -1e-6), ray=ray((-1e7, -5e-4, 3), (1, 0, 0.25)),
+                  opts=opts(eps=0.0), tol=FAR_TOL))
     return c

@@ -7,7 +7,10 @@ checks, which isect.h does not fix), and the reference refuses it.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from typing import Any, Callable
+
+import mpmath
 
 import box
 import convex
@@ -21,8 +24,8 @@ import quadric
 import sphere
 import transformed
 import triangle
-from exact import DesignError, q, qv
-from model import Ctx, EPS_DEFAULT, XRay, finish, hit_json
+from exact import DesignError, cmp, dot, mp, norm2, point_on_ray, q, qv, to_double
+from model import INF, Ctx, EPS_DEFAULT, XRay, finish, hit_json
 
 Solver = Callable[[dict, XRay, Ctx], list]
 
@@ -119,9 +122,82 @@ def one_status(statuses: set[str], name: str) -> str | None:
     return next(iter(statuses), None)
 
 
+def _solve(shape: dict, m: list | None, r: XRay, ctx: Ctx) -> tuple[list, Ctx]:
+    """The hits of a shape (transformed when m is given) and the decision context."""
+    solver = SOLVERS[shape["type"]]
+    if m is None:
+        return solver(shape, r, ctx), ctx
+    hits = transformed.solve(m, solver, shape, r, ctx)
+    return hits, Ctx(ctx.eps, transformed.object_ray(m, r)[1])
+
+
+#: op spawn: every crossing but the one left at t = 0 lies this many spawn offsets
+#: (8 ulps of the hit point's largest coordinate) away from the exact hit point
+SPAWN_MARGIN = 2 ** 16
+
+
+def evaluate_spawn(c: dict) -> dict:
+    """op spawn (isect_spawn_ray): the status, and the hits of the secondary ray.
+
+    The primary ray (default options) must be valid; its first hit is the one
+    spawned from, and when it has none the runner passes the MISS record of the
+    closest-hit batch (E_ARG). The secondary ray starts at the *exact* first hit
+    point P (rational: the case is refused otherwise) in direction dir over
+    [0, inf); the crossing of the surface being left (the one hit at t = 0) is
+    dropped, and every other crossing must lie far from t = 0 compared with the
+    few ulps by which the library's spawned origin differs from P.
+    """
+    shape, m, d = c["shape"], c.get("transform"), c["dir"]
+    st = ray_status(c["ray"]) | shape_status(shape)
+    if m is not None and transformed.check(m):
+        st.add(transformed.check(m))
+    if st:
+        raise DesignError(f"{c['name']}: a spawn case's primary ray, shape and transform must be valid")
+    if len(d) != 3:
+        raise DesignError("dir has 3 numbers")
+    dir_status: set[str] = set()
+    if not all(math.isfinite(x) for x in d):
+        dir_status.add("E_NONFINITE")
+    elif all(x == 0 for x in d):
+        dir_status.add("E_DEGENERATE")
+    r = XRay.from_json(c["ray"])
+    ctx = Ctx(q(EPS_DEFAULT))
+    hits, ctx1 = _solve(shape, m, r, ctx)
+    first = finish(hits, r, ctx1, culls_back(shape), False)
+    if not first:
+        dir_status.add("E_ARG")          # the MISS record is not a hit
+    status = one_status(dir_status, c["name"])
+    if status:
+        return {"status": status}
+    h = first[0]
+    if not isinstance(h.t, Fraction):
+        raise DesignError("spawn: the first hit point must be rational (exactly known)")
+    p = point_on_ray(r.org, r.dir, h.t)
+    dq = qv(d)
+    dn = mp(dot(dq, h.normal))
+    if abs(dn) < mpmath.mpf("1e-3") * mpmath.sqrt(mp(norm2(dq))):
+        raise DesignError("spawn: dir nearly tangent to the surface at the hit")
+    # tmin = -inf: the range is applied below, after the surface left is dropped
+    sec = XRay(p, dq, -INF, INF)
+    hits2, _ = _solve(shape, m, sec, ctx)
+    at0 = [x for x in hits2 if x.t == 0]
+    if len(at0) != 1:
+        raise DesignError(f"spawn: {len(at0)} crossings at the exact hit point (want the one surface left)")
+    offset = 8 * Fraction(math.ulp(to_double(max(abs(x) for x in p))))
+    step = max(abs(x) for x in dq)
+    for x in hits2:
+        if x.t != 0 and abs(mp(x.t)) * mp(step) < SPAWN_MARGIN * mp(offset):
+            raise DesignError("spawn: another crossing within the margin of the spawn offset")
+    rest = [x for x in hits2 if x.t != 0 and cmp(x.t, 0) > 0]
+    kept = finish(rest, sec, ctx, culls_back(shape), False)
+    return {"status": "ok", "count": len(kept), "hits": [hit_json(x, sec) for x in kept]}
+
+
 def evaluate(c: dict) -> dict:
     """The expect object of a case."""
     op = c.get("op", "intersect")
+    if op == "spawn":
+        return evaluate_spawn(c)
     if op in ("point_in_polygon2", "winding_number2", "polygon_normal", "plane_from_points"):
         return polygon2d.evaluate(c)
     shape = c["shape"]

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 
 from exact import dot, eps_le, norm2, point_on_ray, q, qv, sqrt, sub, unit
-from model import INF, Ctx, Hit, XRay, case, opts, ray
+from model import INF, TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "sphere"
 
@@ -131,4 +131,42 @@ def cases() -> list[dict]:
                   point=[0.0, 0.0, -1.0]))
     c.append(case("contains: outside point", ["contains"], op="contains", shape=unit_s,
                   point=[0.75, 0.75, 0.0]))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0)
+    s5 = sphere((1, 2, 3), 5)
+    on = (4.0, 6.0, 3.0)                        # c + (3, 4, 0): exactly on it
+    into, out = (-1, -2, 0.5), (1, 1, -0.25)    # d.n < 0 / > 0 at that point
+    c.append(surface_case("on the surface, inward: enter at t = 0, exit", [], shape=s5, ray=ray(on, into)))
+    c.append(surface_case("on the surface, outward: exit at t = 0 only", [], shape=s5, ray=ray(on, out)))
+    c.append(surface_case("1 ulp outside (x), inward: enter at t ~ +1e-16", [], shape=s5,
+                          ray=ray(nudged(on, 0, 1), into)))
+    c.append(surface_case("1 ulp outside (x), outward: both crossings behind", ["miss"], shape=s5,
+                          ray=ray(nudged(on, 0, 1), out)))
+    c.append(surface_case("1 ulp inside (x), outward: exit at t ~ +1e-16", [], shape=s5,
+                          ray=ray(nudged(on, 0, -1), out)))
+    c.append(surface_case("2 ulps inside (x), inward: entry behind, exit only", [], shape=s5,
+                          ray=ray(nudged(on, 0, -2), into)))
+    c.append(surface_case("3 ulps outside (y), outward: no hit", ["miss"], shape=s5,
+                          ray=ray(nudged(on, 1, 3), out)))
+    c.append(surface_case("3 ulps inside (y), outward, non-unit direction", ["non-unit-dir"], shape=s5,
+                          ray=ray(nudged(on, 1, -3), (7, 3, -5))))
+
+    # --- revision 2: grazing rays (line at distance h from the centre), t to about 4 ulp
+    # direction (1, 2, 2) and offset direction (2, 1, -2)/3, both exact and orthogonal
+    def graze(h: float, d0: float = 10) -> dict:
+        foot = [1 + h * 2 / 3, 2 + h / 3, 3 - h * 2 / 3]
+        return ray([x - d0 * v for x, v in zip(foot, (1, 2, 2))], (1, 2, 2))
+    c.append(case("grazing: h = 5(1 - 2^-30), two close hits", ["grazing", "near-tangent"], shape=s5,
+                  ray=graze(5 * (1 - 2.0 ** -30)), tol=TIGHT))
+    c.append(case("grazing: h = 5(1 + 2^-30), miss", ["grazing", "near-tangent", "miss"], shape=s5,
+                  ray=graze(5 * (1 + 2.0 ** -30))))
+    c.append(case("grazing: h = 5(1 - 2^-44), within eps: touch", ["grazing", "near-tangent"], shape=s5,
+                  ray=graze(5 * (1 - 2.0 ** -44)), tol=TIGHT))
+    c.append(case("grazing: h = 5(1 - 2^-48) with eps = 0: two hits ~3e-7 apart", ["grazing", "near-tangent",
+                  "eps"], shape=s5, ray=graze(5 * (1 - 2.0 ** -48)), opts=opts(eps=0.0), tol=TIGHT))
+    c.append(case("grazing: h = 5(1 + 2^-48) with eps = 0: miss", ["grazing", "near-tangent", "eps", "miss"],
+                  shape=s5, ray=graze(5 * (1 + 2.0 ** -48)), opts=opts(eps=0.0)))
+    c.append(case("grazing, far: r = 1e-3 at 1e7, h = r(1 - 2^-12) (loose normal)", ["grazing", "far",
+                  "loose-normal"], shape=sphere((1e7, 0, 0), 1e-3),
+                  ray=ray((0, 1e-3 * (1 - 2.0 ** -12), 0), (1, 0, 0)), tol=FAR_TOL_LOOSE_N))
     return c

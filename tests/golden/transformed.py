@@ -19,8 +19,10 @@ import math
 from fractions import Fraction
 from typing import Callable, Sequence
 
-from exact import DesignError, norm2, q, representable, sub, to_double, unit
-from model import Ctx, Hit, XRay, case, opts, ray
+import mpmath
+
+from exact import DesignError, mp, norm2, q, refuse, representable, sub, to_double, unit
+from model import TIGHT, Ctx, Hit, XRay, case, nudged, opts, ray, surface_case
 
 FAMILY = "transformed"
 
@@ -120,10 +122,27 @@ def object_ray(m: Sequence[float], r: XRay) -> tuple[XRay, bool]:
     return XRay(org, d, r.tmin, r.tmax), exact
 
 
+def near_bounds(hits: list[Hit], obj: XRay) -> None:
+    """Refuse a hit close to tmin or tmax when the library sees a rounded
+    object-space ray (an inexact transform): the rounding of the object-space
+    origin, ~1e-16 of its size, moves t by about that much over |v'|, and the
+    relative gap of model._bound_ok says nothing about a bound of 0."""
+    step = max(abs(mp(x)) for x in obj.dir)
+    size = max(abs(mp(x)) for x in obj.org)
+    for h in hits:
+        for bound in (obj.tmin, obj.tmax):
+            if isinstance(bound, float):
+                continue
+            if abs(mp(h.t) - mp(bound)) * step <= (size + abs(mp(h.t)) * step) * mpmath.mpf(10) ** -9:
+                refuse("hit within 1e-9 of its scale from tmin/tmax under an inexact transform")
+
+
 def solve(m: Sequence[float], solver: Callable[[dict, XRay, Ctx], list[Hit]], shape: dict,
           r: XRay, ctx: Ctx) -> list[Hit]:
     obj, exact = object_ray(m, r)
     hits = solver(shape, obj, Ctx(ctx.eps, ctx.exact and exact))
+    if not (ctx.exact and exact):
+        near_bounds(hits, obj)
     LiT = transpose(inverse3(linear(m)))
     return [Hit(h.t, unit(mul(LiT, h.normal)), h.kind, h.prim, h.uv) for h in hits]
 
@@ -308,4 +327,73 @@ def cases() -> list[dict]:
         affine([[1, 0, 0], [0, 1, 0], [0, 0, 1]])[:12] + [1e-300, 0.0, 0.0, 1.0])
     bad("NaN in the linear part", ["nonfinite"], affine([[1, 0, 0], [0, math.nan, 0], [0, 0, 1]]))
     bad("Inf in the translation", ["nonfinite"], affine([[1, 0, 0], [0, 1, 0], [0, 0, 1]], (0, math.inf, 0)))
+
+    # --- revision 2: origins on the surface and within a few ulps of it (tmin = 0), under
+    # transforms whose inverse and object-space rays are exact in doubles
+    S5 = sphere((0, 0, 0), 5)
+    on = [7.0, 0.0, 3.0]                                   # SCALE (3, 4, 0)
+    s_in, s_out = (-2, -1, 2), (2, 0.5, -1)                # L (-1, -2, 0.5), L (1, 1, -0.25)
+    for name, o, d in (("on it, inward: enter at t = 0", on, s_in),
+                       ("on it, outward: exit at t = 0 only", on, s_out),
+                       ("1 ulp outside (x), inward", nudged(on, 0, 1), s_in),
+                       ("1 ulp outside (x), outward: no hit", nudged(on, 0, 1), s_out),
+                       ("1 ulp inside (x), outward: t ~ +1e-16", nudged(on, 0, -1), s_out),
+                       ("2 ulps inside (x), inward: exit only", nudged(on, 0, -2), s_in)):
+        c.append(surface_case(f"sphere r = 5, non-uniform scale: {name}", ["transformed", "scaling",
+                              "translation", "exact-transform"] + (["miss"] if "no hit" in name else []),
+                              shape=S5, transform=SCALE, ray=ray(o, d)))
+    slant = tri((1, 0, 0), (0, 1, 0), (0, 0, 1))
+    t_on = [0.75, 0.0, 0.5]                                # SWAP_XY (0.25, 0.25, 0.5)
+    for name, o, d in (("on it, toward the back: t = 0", t_on, (-2, -1, -3)),
+                       ("1 ulp in front (z), toward it", nudged(t_on, 2, 1), (-2, -1, -3)),
+                       ("1 ulp behind (z), away: no hit", nudged(t_on, 2, -1), (-2, -1, -3)),
+                       ("2 ulps behind (x), toward it (exit)", nudged(t_on, 0, -2), (1, 0.5, 1.5))):
+        c.append(surface_case(f"triangle, swap x/y: {name}", ["transformed", "mirror", "exact-transform"]
+                              + (["miss"] if "no hit" in name else []), shape=slant, transform=SWAP_XY,
+                              ray=ray(o, d)))
+    b_on = [3.0, -1.75, 4.0]                               # SCALE (1, 0.5, 0.25) on face +x
+    for name, o, d in (("on face +x, inward", b_on, (-1, 0.25, 0.5)),
+                       ("on face +x, outward: exit at t = 0 only", b_on, (1, 0.25, 0.5)),
+                       ("1 ulp outside face +x, inward", nudged(b_on, 0, 1), (-1, 0.25, 0.5)),
+                       ("1 ulp inside face +x, outward: t ~ +1e-16", nudged(b_on, 0, -1), (1, 0.25, 0.5))):
+        c.append(surface_case(f"box, non-uniform scale: {name}", ["transformed", "scaling", "translation",
+                              "exact-transform"], shape=box((0, 0, 0), (1, 1, 1)), transform=SCALE, ray=ray(o, d)))
+    C5 = cyl((1, 2, 3), (1, 5, 7), 5)
+    c_on = [1.0, 7.5, 2.0]                                 # MIRROR (1, 7.5, 2): on the side
+    for name, o, d in (("on the side, inward", c_on, (-0.5, -1, 0.5)),
+                       ("on the side, outward: exit at t = 0 only", c_on, (-0.25, 1, -0.5)),
+                       ("1 ulp outside the side (y), inward", nudged(c_on, 1, 1), (-0.5, -1, 0.5)),
+                       ("1 ulp inside the side (y), outward: t ~ +1e-16", nudged(c_on, 1, -1),
+                        (-0.25, 1, -0.5))):
+        c.append(surface_case(f"capped cylinder, mirror: {name}", ["transformed", "mirror", "translation",
+                              "exact-transform"], shape=C5, transform=MIRROR, ray=ray(o, d)))
+
+    # --- revision 2: grazing under an exact transform, t to about 4 ulp (object-space design:
+    # the line at distance h from the centre along (2, 1, -2)/3, direction (1, 2, 2))
+    def graze(h: float) -> tuple[list[float], tuple[int, int, int]]:
+        foot = [h * 2 / 3, h / 3, -h * 2 / 3]
+        return [x - 10 * v for x, v in zip(foot, (1, 2, 2))], (1, 2, 2)
+    for name, h, extra, kw in (("h = 5(1 - 2^-30): two close hits", 5 - 5 * 2.0 ** -30, [], {}),
+                               ("h = 5(1 + 2^-30): miss", 5 + 5 * 2.0 ** -30, ["miss"], {}),
+                               ("h = 5(1 - 2^-44): touch within eps", 5 - 5 * 2.0 ** -44, [], {}),
+                               ("h = 5(1 - 2^-48), eps = 0: two hits", 5 - 5 * 2.0 ** -48, ["eps"],
+                                {"opts": opts(eps=0.0)})):
+        o, d = graze(h)
+        add(f"sphere r = 5, non-uniform scale, grazing: {name}", ["scaling", "translation", "exact-transform",
+            "grazing", "near-tangent"] + extra, S5, SCALE, o, d, tol=TIGHT, **kw)
+
+    # --- revision 2: far and small, t to about 4 ulp
+    FAR_T = affine([[2.0 ** -10, 0, 0], [0, 2.0 ** -10, 0], [0, 0, 2.0 ** -10]], (1e7, 0, 0))
+    c.append(case("far: unit sphere scaled by 2^-10 and moved to x = 1e7", ["transformed", "scaling",
+                  "translation", "exact-transform", "far", "loose-normal"], shape=S, transform=FAR_T,
+                  ray=ray((0, 3e-4, 0), (1, 0, 0)), tol={"t": 1e-15, "normal": 1e-5}))
+    FAR_R = affine(matmul(rotation((1, 2, 2), 40), [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]]), (6e6, 8e6, 0))
+    c.append(case("far: unit sphere scaled by 1e-3, rotated, moved to (6e6, 8e6, 0)", ["transformed",
+                  "scaling", "rotation", "translation", "far", "loose-normal", "loose-point"], shape=S,
+                  transform=FAR_R, ray=ray((0, 5e-4, 1e-4), (3, 4, 0)),
+                  tol={"t": 1e-15, "point": 1e-8, "normal": 1e-5}))
+    c.append(case("far: a 1e-3 box rotated about z at (1e7, 0, 0)", ["transformed", "rotation", "translation",
+                  "far", "loose-point"], shape=box((-5e-4, -5e-4, -5e-4), (5e-4, 5e-4, 5e-4)),
+                  transform=affine(rotation((0, 0, 1), 30), (1e7, 0, 0)), ray=ray((0, 1e-4, 2e-4), (1, 0, 0)),
+                  tol={"t": 1e-15, "point": 1e-8}))
     return c

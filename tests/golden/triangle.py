@@ -1,7 +1,13 @@
 """Triangle a, b, c (isect_ray_triangle): reference solver and cases.
 
-Plane: n = (b - a) x (c - a); parallel when |n.v| <= eps|n||v| (no hit);
-n = 0 is degenerate.  Otherwise the plane is met at
+Plane: n = (b - a) x (c - a); n = 0 is degenerate.  No eps is involved
+(SPEC revision 2: triangles, polygons and mesh faces use no eps at all): the
+exact test in the sheared frame alone decides whether the triangle is
+crossed, so a nearly parallel ray that crosses it is a hit whatever eps is.
+Only a ray exactly parallel to the plane (n.v == 0, exactly) has no crossing
+point and is not hit (its projection is a segment through which the
+perturbed query point never passes, so the winding test agrees).  Otherwise
+the plane is met at
     t = n.(a - o) / (n.v)                          (seed: Ray-Plane)
 and the hit counts when the winding number of the projected triangle around
 the ray is nonzero, evaluated exactly in the ray's sheared frame with the
@@ -16,18 +22,31 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from exact import cross, dot, is_zero, qv, sub, unit
-from model import INF, Ctx, Group, Hit, XRay, case, opts, ray
-from plane import parallel
+from exact import cross, dot, is_zero, qv, refuse, sub, unit
+from model import INF, TIGHT, Ctx, Group, Hit, XRay, case, nudged, opts, ray, surface_case
 from sheared import Frame, winding_sheared
 
 FAMILY = "triangle"
 
 
+def exactly_parallel(n, v, ctx: Ctx) -> bool:
+    """n.v == 0 exactly: the ray has no crossing point with the face's plane.
+
+    The library sees exactly this ray unless a transform rounds the object-space
+    ray (ctx.exact False); then an exactly parallel ray could be seen as
+    slightly tilted, and the case is refused.
+    """
+    if dot(n, v) != 0:
+        return False
+    if not ctx.exact:
+        refuse("ray exactly parallel to a face under an inexact transform")
+    return True
+
+
 def solve(shape: dict, r: XRay, ctx: Ctx) -> list[Hit]:
     a, b, c = qv(shape["a"]), qv(shape["b"]), qv(shape["c"])
     n = cross(sub(b, a), sub(c, a))
-    if is_zero(n) or parallel(n, r.dir, ctx.eps, "triangle parallel"):
+    if is_zero(n) or exactly_parallel(n, r.dir, ctx):
         return []
     if winding_sheared([a, b, c], r.org, r.dir, ctx.exact) == 0:
         return []
@@ -79,7 +98,8 @@ def cases() -> list[dict]:
                   ray=ray((-1, 0.25, 0), (1, 0, 0))))
     c.append(case("near-parallel (slope 1e-8), default eps: hit", ["near-parallel"], shape=t0,
                   ray=ray((-0.75, 0.25, 1e-8), (1, 0, -1e-8))))
-    c.append(case("near-parallel (slope 1e-8), eps 1e-6: parallel", ["near-parallel", "eps", "miss"],
+    c.append(case("near-parallel (slope 1e-8), eps 1e-6: still hit (revision 2: no eps for faces)",
+                  ["near-parallel", "eps"],
                   shape=t0, ray=ray((-0.75, 0.25, 1e-8), (1, 0, -1e-8)), opts=opts(eps=1e-6)))
     c.append(case("general triangle, oblique ray (uv check)", ["basic", "non-unit-dir"],
                   shape=tri((1, 2, 3), (4, 0, 1), (2, 5, -1)), ray=ray((0, 0, 0), (2.1, 2.3, 1.2))))
@@ -151,4 +171,40 @@ def cases() -> list[dict]:
     for f in ((1, 1, 1), (1, 1, -1)):
         c.append(case(f"octahedron edge crossing, face {f}", ["edge", "watertight", "frame-swap"], g,
                       shape=octa_face(*f), ray=ray((2.5, 1.5, 0), (-2, -1, 0))))
+
+    # --- revision 2: origins on the triangle and within a few ulps of it (tmin = 0)
+    slant = tri((1, 0, 0), (0, 1, 0), (0, 0, 1))     # x + y + z = 1, normal (1, 1, 1)
+    on = (0.25, 0.25, 0.5)
+    back, front = (-1, -2, -3), (0.5, 1, 1.5)         # toward the back / the front side
+    c.append(surface_case("on the triangle, toward the back: t = 0 (enter)", ["frame-swap"], shape=slant,
+                          ray=ray(on, back)))
+    c.append(surface_case("on the triangle, toward the front: t = 0 (exit)", [], shape=slant,
+                          ray=ray(on, front)))
+    c.append(surface_case("1 ulp in front (z), toward it: t ~ +1e-16", ["frame-swap"], shape=slant,
+                          ray=ray(nudged(on, 2, 1), back)))
+    c.append(surface_case("1 ulp in front (z), away: no hit", ["miss"], shape=slant,
+                          ray=ray(nudged(on, 2, 1), front)))
+    c.append(surface_case("1 ulp behind (z), toward it: t ~ +1e-16 (exit)", [], shape=slant,
+                          ray=ray(nudged(on, 2, -1), front)))
+    c.append(surface_case("2 ulps behind (x), away: no hit", ["miss", "frame-swap"], shape=slant,
+                          ray=ray(nudged(on, 0, -2), back)))
+    c.append(surface_case("3 ulps in front (y), toward it, cull_back keeps the front", ["cull-back",
+                          "frame-swap"], shape=slant, ray=ray(nudged(on, 1, 3), back),
+                          opts=opts(flags=["cull_back"])))
+    c.append(surface_case("on the plane beside the triangle: no hit", ["miss"], shape=slant,
+                          ray=ray((0.75, 0.75, -0.5), back)))
+
+    # --- revision 2: grazing rays, nearly parallel; the exact test decides at every eps
+    s45 = 2.0 ** -45                                   # slope far below the default eps
+    c.append(case("grazing: slope 2^-45 crossing inside (default eps): hit", ["grazing", "near-parallel"],
+                  shape=t0, ray=ray((-0.75, 0.375, s45), (1, 0, -s45)), tol=TIGHT))
+    c.append(case("grazing: slope 2^-45 crossing inside, eps 1e-3: still hit", ["grazing", "near-parallel",
+                  "eps"], shape=t0, ray=ray((-0.75, 0.375, s45), (1, 0, -s45)), opts=opts(eps=1e-3), tol=TIGHT))
+    c.append(case("grazing: slope 2^-45 crossing beside the hypotenuse: miss", ["grazing", "near-parallel",
+                  "miss"], shape=t0, ray=ray((-0.75, 0.875, s45), (1, 0, -s45))))
+    c.append(case("grazing: slope 2^-45 from below, back side", ["grazing", "near-parallel"],
+                  shape=t0, ray=ray((-0.5, 0.125, -3 * s45), (1, 0.5, 4 * s45)), tol=TIGHT))
+    c.append(case("grazing: slanted triangle, direction in its plane tilted by 2^-40", ["grazing",
+                  "near-parallel"], shape=slant,
+                  ray=ray((1.25, -0.5, 0.25 + 2.0 ** -40), (-1, 1, -(2.0 ** -40))), tol=TIGHT))
     return c

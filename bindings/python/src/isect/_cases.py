@@ -10,8 +10,11 @@ hit, compared with the expectation within the case's tolerances), ``intersect``
 the expected error from both the scalar and the batch call. A ``mesh`` shape is
 built with :class:`~isect.Mesh` (a creation error is the case's status, whatever
 the op); a ``mesh_check`` case compares every field of :meth:`Mesh.check`'s
-report. Cases flagged ``c-only`` cannot be expressed through the Python API and
-are skipped.
+report. A ``spawn`` case intersects its primary ray (``intersect``: the closest
+hit, or the MISS record), spawns the secondary ray with :meth:`Shape.spawn`,
+checks its direction, ``tmin``, ``tmax`` and origin (within 8 ulps of the hit
+point), and compares that ray's hits like an ``intersect`` case's. Cases flagged
+``c-only`` cannot be expressed through the Python API and are skipped.
 
 A structural problem of a file or case (a missing key, a number that is not
 one, an unknown op, shape type, kind, status or flag) is a
@@ -29,6 +32,8 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from ._errors import (
     DegenerateError,
@@ -73,6 +78,7 @@ OPS = (
     "winding_number2",
     "polygon_normal",
     "plane_from_points",
+    "spawn",
 )
 SHAPE_TYPES = (
     "plane",
@@ -94,6 +100,9 @@ REPORT_FIELDS = tuple(f.name for f in dataclasses.fields(MeshReport))
 REPORT_MEASURES = ("volume", "area")
 REPORT_FLAGS = ("closed", "oriented")
 OPT_FLAGS = ("cull_back", "any_hit")
+#: op spawn: how far (in ulps of the hit point's largest coordinate) the spawned
+#: origin may lie from the hit point, per coordinate
+SPAWN_MAX_ULPS = 8
 
 
 class CaseFormatError(ValueError):
@@ -408,6 +417,68 @@ def _run_intersect(case: dict[str, Any]) -> dict[str, Any]:
     return actual
 
 
+def _spawn_inputs(case: dict[str, Any]) -> tuple[Shape, Any, list[float]]:
+    """The shape, the primary ray's closest-hit record (MISS when it misses)
+    and the secondary direction of a ``spawn`` case."""
+    org, dirn, kwargs = ray_args(case)
+    direction = num(need(case, "dir"), "dir")
+    if not isinstance(direction, list) or len(direction) != 3:
+        raise CaseFormatError("dir", "expected 3 numbers")
+    shape = case_shape(case)
+    first = shape.intersect(org, dirn, tmin=kwargs["tmin"], tmax=kwargs["tmax"])
+    return shape, first, direction
+
+
+def _run_spawn(case: dict[str, Any]) -> dict[str, Any]:
+    """A ``spawn`` case expected to succeed; returns the secondary ray's hits."""
+    shape, first, direction = _spawn_inputs(case)
+    try:
+        ray = shape.spawn(first, direction)
+    except IsectError as error:
+        failure = CaseFailure(f"spawn: expected ok, actual {status_of(error)}: {error}")
+        failure.actual = {"status": status_of(error), "message": str(error)}  # type: ignore[attr-defined]
+        raise failure from None
+    org, dirn = [float(v) for v in ray["org"]], [float(v) for v in ray["dir"]]
+    point = [float(v) for v in first["point"]]
+    unit = float(np.spacing(max(abs(v) for v in point)))
+    problems = []
+    if [_bits(v) for v in dirn] != [_bits(float(v)) for v in direction]:
+        problems.append(f"spawned dir {dirn} != dir {direction}")
+    if not (ray["tmin"] == 0.0 and ray["tmax"] == math.inf):
+        problems.append(f"spawned tmin, tmax = {float(ray['tmin'])}, {float(ray['tmax'])} (want 0, inf)")
+    for k in range(3):
+        if not abs(org[k] - point[k]) <= SPAWN_MAX_ULPS * unit:
+            problems.append(
+                f"spawned org[{k}] {org[k]!r} is {abs(org[k] - point[k]) / unit:.3g} ulps from the "
+                f"hit point {point[k]!r} (at most {SPAWN_MAX_ULPS})"
+            )
+    hits = shape.intersect_all(org, dirn, tmin=float(ray["tmin"]), tmax=float(ray["tmax"]))
+    actual = {"status": "ok", "count": len(hits), "hits": [_hit_dict(h) for h in hits]}
+    try:
+        if problems:
+            raise CaseFailure("; ".join(problems))
+        _check_hits(case, hits)
+        # the batch form: the same ray twice, bit for bit
+        twice = shape.spawn(np.stack([first, first]), np.array([direction, direction]))
+        if twice.tobytes() != np.stack([ray, ray]).tobytes():
+            raise CaseFailure("spawn of a batch of two differs from the single call")
+        closest = shape.intersect_rays(np.stack([ray]))[0]  # the zero-copy path of spawned rays
+        if hits:
+            if not _same_record(closest, hits[0]):
+                raise CaseFailure(f"batch closest hit {closest} != first hit {hits[0]}")
+        elif not (closest["kind"] == HitKind.MISS and closest["t"] == math.inf):
+            raise CaseFailure(f"batch closest hit {closest} is not a MISS")
+    except CaseFailure as failure:
+        failure.actual = actual  # type: ignore[attr-defined]
+        raise
+    return actual
+
+
+def _run_spawn_error(case: dict[str, Any], status: str) -> None:
+    shape, first, direction = _spawn_inputs(case)
+    _expect_error(status, lambda: shape.spawn(first, direction), "spawn")
+
+
 def _ray_is_bad(case: dict[str, Any]) -> bool:
     org, dirn, kwargs = ray_args(case)
     try:
@@ -575,6 +646,11 @@ def check_case(case: dict[str, Any]) -> dict[str, Any] | None:
         if status == "ok":
             return _run_intersect(case)
         _run_intersect_error(case, status)
+        return {"status": status}
+    if op == "spawn":
+        if status == "ok":
+            return _run_spawn(case)
+        _run_spawn_error(case, status)
         return {"status": status}
     run = OP_CALLS[op]
     if status != "ok":

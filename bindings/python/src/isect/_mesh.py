@@ -127,8 +127,8 @@ class Mesh(Solid):
 
     Faces are planar polygons (convex or concave) whose vertex order gives the
     outward normal by the right-hand rule. Every hit of a closed mesh is
-    reported exactly once, also at shared edges and vertices (pass ``eps=0``
-    for the unconditional guarantee; see isect.h). Hit ``prim`` is the face
+    reported exactly once, also at shared edges and vertices, at every eps
+    (SPEC revision 2: faces use no eps; see isect.h). Hit ``prim`` is the face
     index; triangles carry barycentric ``uv``. :meth:`contains` applies to
     closed meshes (exact crossing parity; points on the surface are inside)
     and raises :class:`InvalidArgumentError` for a mesh with boundary edges.

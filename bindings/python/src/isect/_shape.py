@@ -453,6 +453,86 @@ class Shape:
                 self._raise_bad_ray(rp, ray, opts, name)
         return offsets, hits
 
+    def spawn(
+        self,
+        hits: HitsLike,
+        directions: ArrayLike,
+        *,
+        threads: int | None = None,
+    ) -> Any:
+        """Secondary rays leaving this shape's surface at hits (``isect_spawn_ray``).
+
+        Each ray starts at its hit's point moved along the hit's normal by the
+        fewest whole ulps (1, 2, 4, ...) that put it strictly on the side of the
+        surface its direction points into, as the shape's exact side test
+        decides it; so intersecting the ray with this shape never finds the
+        surface it leaves at t ~ 0, and still finds any other surface more
+        than a few ulps away (a reflection, a refraction, a shadow ray). The
+        ray's direction is the given one, ``tmin`` 0 and ``tmax`` +inf.
+
+        Args:
+            hits: hits this shape reported (in world space): a ``HIT_DTYPE``
+                array of shape (N,) (or any shape), a single ``HIT_DTYPE``
+                record, or a :class:`Hit` (or a list of them).
+            directions: the new directions, (N, 3) or (3,); they need not be
+                unit length. Hits and directions broadcast against each other
+                (one hit with many directions, or one direction for many hits).
+            threads: split a large batch over this many threads (the GIL is
+                released); the result is the same.
+
+        Returns:
+            A ``RAY_DTYPE`` array of the broadcast shape, or a single
+            ``RAY_DTYPE`` record for one hit and one (3,) direction. Pass it
+            to :meth:`intersect_rays`, or its fields to :meth:`intersect`.
+
+        Raises:
+            InvalidArgumentError: a hit whose kind is not ENTER, EXIT or TOUCH
+                (a MISS or INVALID record of a batch), a zero normal, a prim
+                that is not one of this shape's (a mesh face index out of
+                range), arrays of the wrong dtype or shape.
+            NonFiniteError: NaN or infinity in a hit or a direction.
+            DegenerateError: a zero direction, or a hit that is not near the
+                surface (no offset leaves it).
+            The error names the flat index of the first bad row (``index``).
+        """
+        name = f"{type(self).__name__}.spawn"
+        harr = _as_hit_array(hits, name)
+        dirs = as_points(directions, 3, "directions")
+        try:
+            shape = np.broadcast_shapes(harr.shape, dirs.shape[:-1])
+        except ValueError:
+            raise invalid(
+                f"{name}: cannot broadcast hits {harr.shape} and directions {dirs.shape} together"
+            ) from None
+        n = math.prod(shape)
+        if harr.size == 1 and n != 1:
+            hflat, hit_step = np.ascontiguousarray(harr.reshape(1)), 0
+        else:
+            hflat, hit_step = _flat_contiguous(harr, shape), 1
+        if dirs.shape[:-1] != shape and math.prod(dirs.shape[:-1]) == 1:
+            dflat, dir_step = np.ascontiguousarray(dirs.reshape(3), dtype=np.float64), 0
+        else:
+            dflat = _flat_contiguous(np.asarray(dirs, dtype=np.float64), (*shape, 3))
+            dir_step = 3
+        out = np.empty(n, dtype=RAY_DTYPE)
+        hp = ffi.from_buffer("isect_hit[]", hflat)
+        dp = ffi.from_buffer("double[]", dflat)
+        op = ffi.from_buffer("isect_ray[]", out)
+        c = self._c
+
+        def work(lo: int, hi: int) -> tuple[int, int]:
+            """One chunk: (status, index of its first bad row or -1)."""
+            bad = ffi.new("int64_t *")
+            status = lib.pyisect_spawn_batch(
+                c, hp + lo * hit_step, hit_step, dp + lo * dir_step, dir_step, hi - lo, op + lo, bad
+            )
+            return int(status), (lo + int(bad[0]) if status < 0 else -1)
+
+        for status, index in _batch.run(work, n, as_threads(threads)):
+            if status < 0:
+                raise error_for(status, name, index=index, item="hit")
+        return out.reshape(shape)[()] if shape == () else out.reshape(shape)
+
     # ------------------------------------------------------------ internals
 
     def _closest(
@@ -561,6 +641,40 @@ class Solid(Shape):
             raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point")
         result = inside.view(np.bool_).reshape(shape)
         return bool(result) if shape == () else result
+
+
+#: What :meth:`Shape.spawn` takes as hits: ``HIT_DTYPE`` arrays or records, or
+#: :class:`Hit` tuples.
+HitsLike = ArrayLike | Hit | Sequence[Hit]
+
+
+def _as_hit_array(hits: Any, name: str) -> np.ndarray:
+    """``hits`` as a ``HIT_DTYPE`` array (no copy when it already is one)."""
+    if isinstance(hits, Hit) or (
+        isinstance(hits, (list, tuple)) and hits and all(isinstance(h, Hit) for h in hits)
+    ):
+        rows = [hits] if isinstance(hits, Hit) else list(hits)
+        try:
+            a = np.array(
+                [(h.t, h.point, h.normal, h.uv, h.prim, int(h.kind)) for h in rows],
+                dtype=HIT_DTYPE,
+            )
+        except (TypeError, ValueError) as exc:
+            raise invalid(f"{name}: hits: not a Hit ({exc})") from None
+        return a.reshape(()) if isinstance(hits, Hit) else a
+    a = np.asarray(hits)
+    if a.dtype == HIT_DTYPE:
+        return a
+    if a.dtype.names is not None and set(a.dtype.names) == set(HIT_DTYPE.names or ()):
+        return a.astype(HIT_DTYPE)
+    raise invalid(f"{name}: hits: expected HIT_DTYPE records or Hit tuples, got dtype {a.dtype}")
+
+
+def _flat_contiguous(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """``a`` broadcast to ``shape``, flattened and C-contiguous (a copy only when needed)."""
+    if a.shape != shape:
+        a = np.broadcast_to(a, shape)
+    return np.ascontiguousarray(a).reshape(-1)
 
 
 def raise_bad_element(status: int, name: str, index: int, item: str) -> None:
