@@ -111,4 +111,27 @@ static inline ddx ddx_sqr(ddx x)
     return ddx_mul(x, x);
 }
 
+/* x / y, kept as a renormalised dd: the head quotient corrected once by the
+ * residual x - tau y (its head part exact by TwoProduct). The bound: the
+ * propagated (ex + |x/y| ey) / (|y| - ey) (exact to first order on the
+ * interval of y), the correction's own 21u^2 |x/y| taken as 32u^2, then
+ * widened. A y within 8 ey of zero gives err = +inf (not a number to
+ * certify with). */
+static inline ddx ddx_div(ddx x, ddx y)
+{
+    double y_abs = fabs(y.hi) - fabs(y.lo);
+    ddx r = { x.hi / y.hi, 0.0, INFINITY };
+    if (!(y_abs > 8.0 * y.err) || !isfinite(r.hi))
+        return r;
+    double tau = r.hi;
+    double p = tau * y.hi;
+    double p_err = product_error(tau, y.hi, p);
+    double rest = ((x.hi - p) - p_err) + (x.lo - tau * y.lo);
+    r = ddx_two_sum(tau, rest / y.hi, 0.0);
+    double t_abs = ddx_abs(r);
+    double denom = y_abs * (1.0 - 2.0 * DDX_U) - y.err;
+    r.err = ((x.err + t_abs * y.err) / denom + 32.0 * DDX_U * DDX_U * t_abs) * DDX_WIDEN + DDX_TINY;
+    return r;
+}
+
 #endif /* ISECT_DDX_H */

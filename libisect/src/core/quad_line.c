@@ -3,12 +3,11 @@
  * double-doubles, or exact (see quad_line.h).
  */
 #include "core/quad_line.h"
-#include "core/eft.h"
 #include "core/ratio.h"
 
 #include <math.h>
 
-#define U 0x1p-53
+#define U DDX_U
 
 /* ------------------------------------------------------------ certified */
 
@@ -19,7 +18,7 @@ static int side_certain(double t_hi, double err, double tau)
 {
     if (isinf(tau))
         return tau < 0.0 ? 1 : -1;
-    vdd d = two_sum(t_hi, -tau);
+    ddx d = ddx_diff(t_hi, tau);
     if (err == 0.0)
         return (d.hi > 0.0) - (d.hi < 0.0);
     /* |d| >= |d.hi| (1 - u): the margin must clear err by that much */
@@ -28,18 +27,17 @@ static int side_certain(double t_hi, double err, double tau)
     return 2;
 }
 
-/* x / y for dd x, y with absolute errors ex, ey (ey < |y|/8): the quotient
- * as a dd and a bound on its distance from the exact quotient. */
-static double quotient_bound(vdd x, double ex, vdd y, double ey, vdd *out)
+/* sqrt(x) for x > 0 as a dd with its bound: |sqrt(X) - sqrt(x')| <=
+ * |X - x'| / sqrt(x') for the exact X >= 0 near x' = hi + lo. */
+static ddx ddx_sqrt(ddx x, double x_low_bound)
 {
-    double inv = 1.0 / y.hi;
-    *out = dd_mul_inv_dd(x, y, inv);
-    double t_abs = fabs(out->hi) + fabs(out->lo);
-    double denom = (fabs(y.hi) - fabs(y.lo)) * (1.0 - 2.0 * U) - ey;
-    /* |x/y - x'/y'| <= (ex + |x'/y'| ey) / |y| (first order exact: the
-     * derivative bound on [y' - ey, y' + ey]), plus dd_mul_inv_dd's own
-     * 21u^2 relative error */
-    return ((ex + t_abs * ey) / denom + 32.0 * U * U * t_abs) * (1.0 + 8.0 * U);
+    double s = sqrt(x.hi);
+    double sq = s * s;
+    double sq_err = product_error(s, s, sq);
+    ddx r = { s, (((x.hi - sq) - sq_err) + x.lo) / (s + s), 0.0 };
+    r = ddx_add(r, ddx_of(0.0));
+    r.err = (x.err / sqrt(x_low_bound) + 4.0 * U * U * s) * DDX_WIDEN + DDX_TINY;
+    return r;
 }
 
 int quad_line_certify(const quad_line_dd *q, double tmin, double tmax, quad_line_roots *out)
@@ -47,54 +45,40 @@ int quad_line_certify(const quad_line_dd *q, double tmin, double tmax, quad_line
     out->count = 0;
     out->touch = 0;
     /* A must be certainly away from the linear threshold (and from 0) */
-    double a_abs = fabs(q->a) - fabs(q->a_lo);
-    if (!(a_abs * (1.0 - 2.0 * U) > 8.0 * q->a_err + q->l_thr))
+    if (!(ddx_abs(q->a) * (1.0 - 2.0 * U) > 8.0 * q->a.err + q->l_thr))
         return 0;
-    double g_lo_bound = (q->g - fabs(q->g_lo)) * (1.0 - 2.0 * U) - q->g_err;
-    double g_hi_bound = (q->g + fabs(q->g_lo)) * (1.0 + 2.0 * U) + q->g_err;
-    if (g_hi_bound < -q->t_thr)
+    double g_low = (q->g.hi - fabs(q->g.lo)) * (1.0 - 2.0 * U) - q->g.err;
+    double g_high = (q->g.hi + fabs(q->g.lo)) * (1.0 + 2.0 * U) + q->g.err;
+    if (g_high < -q->t_thr)
         return 1; /* G < -T: the line misses */
-    if (!(g_lo_bound > q->t_thr))
+    if (!(g_low > q->t_thr))
         return 0; /* a touch, or too close to tell */
 
-    /* sqrt(G) as a dd: |sqrt(G) - sqrt(G')| <= |G - G'| / sqrt(G') */
-    double s = sqrt(q->g);
-    vdd s2 = two_prod(s, s);
-    vdd root = { s, (((q->g - s2.hi) - s2.lo) + q->g_lo) / (s + s) };
-    root = dd_renorm(root);
-    double root_err = q->g_err / sqrt(g_lo_bound) + 4.0 * U * U * s;
-
-    /* q = -(B + sigma sqrt(G)): the two terms share a sign, so
-     * |q| >= sqrt(G) and the sum is as accurate as its parts */
-    double sigma = q->b < 0.0 ? -1.0 : 1.0;
-    vdd sum = two_sum(q->b, sigma * root.hi);
-    vdd qq = dd_renorm((vdd){ -sum.hi, -(sum.lo + (q->b_lo + sigma * root.lo)) });
-    double q_err = (q->b_err + root_err) * (1.0 + 4.0 * U) + 4.0 * U * U * fabs(qq.hi);
-    if (!(q_err < fabs(qq.hi) / 8.0))
-        return 0;
-
-    vdd a = { q->a, q->a_lo }, c = { q->c, q->c_lo };
-    vdd t_q_a, t_c_q;
-    double e_q_a = quotient_bound(qq, q_err, a, q->a_err, &t_q_a);
-    double e_c_q = quotient_bound(c, q->c_err, qq, q_err, &t_c_q);
+    /* q = -(B + sigma sqrt(G)): the two terms share a sign (for the dd
+     * values; either sign gives the roots, the bounds say how well), so
+     * |q| >= sqrt(G) and nothing cancels; then the roots q/A and C/q */
+    ddx root = ddx_sqrt(q->g, g_low);
+    double sigma = q->b.hi < 0.0 ? -1.0 : 1.0;
+    ddx qq = ddx_neg(ddx_add(q->b, sigma > 0.0 ? root : ddx_neg(root)));
+    ddx t_q_a = ddx_div(qq, q->a), t_c_q = ddx_div(q->c, qq);
     /* q/A is r- for sigma = +1, r+ for sigma = -1; C/q the other */
-    vdd r_minus = sigma > 0.0 ? t_q_a : t_c_q, r_plus = sigma > 0.0 ? t_c_q : t_q_a;
-    double e_minus = sigma > 0.0 ? e_q_a : e_c_q, e_plus = sigma > 0.0 ? e_c_q : e_q_a;
-    int a_pos = q->a > 0.0;
-    vdd r[2] = { a_pos ? r_minus : r_plus, a_pos ? r_plus : r_minus };
-    double e[2] = { a_pos ? e_minus : e_plus, a_pos ? e_plus : e_minus };
+    ddx r_minus = sigma > 0.0 ? t_q_a : t_c_q, r_plus = sigma > 0.0 ? t_c_q : t_q_a;
+    int a_pos = q->a.hi > 0.0;
+    ddx r[2] = { a_pos ? r_minus : r_plus, a_pos ? r_plus : r_minus };
     for (int i = 0; i < 2; i++) {
-        /* the reported t_hi within 1.5 ulp: |t_lo| <= ulp/2, e <= ulp */
-        double err = e[i] + fabs(r[i].lo);
-        if (!(e[i] == 0.0 || e[i] <= 0x1p-53 * fabs(r[i].hi)))
+        /* the reported t_hi within 1.5 ulp: |t_lo| <= ulp/2, err <= ulp */
+        if (!(r[i].err <= 0x1p-53 * fabs(r[i].hi)))
             return 0;
+        double err = r[i].err + fabs(r[i].lo);
         int lo = side_certain(r[i].hi, err, tmin), hi = side_certain(r[i].hi, err, tmax);
         if (lo == 2 || hi == 2)
             return 0;
         out->t_hi[i] = r[i].hi;
         out->t_lo[i] = r[i].lo;
+        out->err[i] = r[i].err;
         out->in[i] = lo >= 0 && hi <= 0;
         out->enter[i] = a_pos ? i == 0 : i == 1;
+        out->which[i] = out->enter[i] ? QL_ROOT_MINUS : QL_ROOT_PLUS;
     }
     out->count = 2;
     return 1;
@@ -102,28 +86,53 @@ int quad_line_certify(const quad_line_dd *q, double tmin, double tmax, quad_line
 
 /* ---------------------------------------------------------------- exact */
 
-/* sign(tau - r) for the root r = (-B + pm sqrt(G))/A, pm = -1 (r-) or +1
- * (r+), G > 0, from the signs of s = A tau + B and Q(tau) (quad_line.h). */
-static int root_side(const xp *a, const xp *b, const xp *c, int a_sign, double tau, int pm)
+int quad_line_cmp(const xp *a, const xp *b, const xp *c, int which, const xp *num,
+                  const xp *den)
 {
-    if (isinf(tau))
-        return tau < 0.0 ? -1 : 1;
-    xp s, qt;
-    xp_scale(&s, a, tau);
-    xp_add(&s, &s, b);            /* s = A tau + B */
-    xp_add(&qt, &s, b);
-    xp_scale(&qt, &qt, tau);
-    xp_add(&qt, &qt, c);          /* Q(tau) = (A tau + 2B) tau + C */
-    int ss = xp_sign(&s), sq = xp_sign(&qt);
-    int term; /* the sign of s - pm sqrt(G), i.e. of A (tau - r) */
-    if (pm < 0)
-        term = ss >= 0 ? 1 : -a_sign * sq;   /* s + sqrt(G) */
+    int den_sign = xp_sign(den);
+    xp s, tmp;
+    /* A num + B den: s = A tau + B times den */
+    xp_mul(&s, a, num);
+    xp_add_mul(&s, b, den);
+    if (which == QL_ROOT_TOUCH) /* -B/A - tau = -(A tau + B)/A */
+        return -xp_sign(&s) * xp_sign(a) * den_sign;
+    if (which == QL_ROOT_LINEAR) { /* -C/(2B) - tau = -(C + 2B tau)/(2B) */
+        xp_mul(&tmp, c, den);
+        xp_add_mul(&tmp, b, num);
+        xp_add_mul(&tmp, b, num);
+        return -xp_sign(&tmp) * xp_sign(b) * den_sign;
+    }
+    /* Q(tau) den^2 = A num^2 + 2B num den + C den^2
+     *              = (A num + 2B den) num + (C den) den */
+    xp s2, q, c_den;
+    xp_mul(&s2, b, den);
+    xp_add(&s2, &s2, &s);         /* A num + 2B den */
+    xp_mul(&q, &s2, num);
+    xp_mul(&c_den, c, den);
+    xp_add_mul(&q, &c_den, den);
+    int a_sign = xp_sign(a), ss = xp_sign(&s) * den_sign, sq = xp_sign(&q);
+    /* the sign of s + sqrt(G) (r-) or s - sqrt(G) (r+): A (tau - r) */
+    int term;
+    if (which == QL_ROOT_MINUS)
+        term = ss >= 0 ? 1 : -a_sign * sq;
     else
-        term = ss <= 0 ? -1 : a_sign * sq;   /* s - sqrt(G) */
-    return term * a_sign;
+        term = ss <= 0 ? -1 : a_sign * sq;
+    return -term * a_sign;
 }
 
-static void set_from_ratio(const xp *num, const xp *den, double tmin, double tmax,
+/* sign(r - tau) for a double tau (infinite allowed) */
+static int cmp_tau(const xp *a, const xp *b, const xp *c, int which, double tau)
+{
+    if (isinf(tau))
+        return tau < 0.0 ? 1 : -1;
+    xp num, one;
+    xp_set(&num, tau);
+    xp_set(&one, 1.0);
+    return quad_line_cmp(a, b, c, which, &num, &one);
+}
+
+/* The dd value of a ratio root and its decisions (ratio.c). */
+static void set_from_ratio(const xp *num, const xp *den, double tmin, double tmax, int which,
                            quad_line_roots *out)
 {
     int in = 0;
@@ -131,7 +140,9 @@ static void set_from_ratio(const xp *num, const xp *den, double tmin, double tma
     out->count = ratio_decide(num, den, tmin, tmax, &in, &hi, &lo);
     out->t_hi[0] = hi;
     out->t_lo[0] = lo;
+    out->err[0] = 8.0 * U * U * fabs(hi) + DDX_TINY;
     out->in[0] = in;
+    out->which[0] = which;
 }
 
 void quad_line_exact(const xp *a, const xp *b, const xp *c, const xp *t_thr, const xp *l_thr,
@@ -155,7 +166,7 @@ void quad_line_exact(const xp *a, const xp *b, const xp *c, const xp *t_thr, con
         xp num, den;
         xp_scale(&num, c, -1.0);
         xp_scale(&den, b, 2.0);
-        set_from_ratio(&num, &den, tmin, tmax, out);
+        set_from_ratio(&num, &den, tmin, tmax, QL_ROOT_LINEAR, out);
         out->enter[0] = xp_sign(b) < 0;
         return;
     }
@@ -175,7 +186,7 @@ void quad_line_exact(const xp *a, const xp *b, const xp *c, const xp *t_thr, con
     if (touch) {
         xp num;
         xp_scale(&num, b, -1.0);
-        set_from_ratio(&num, a, tmin, tmax, out); /* -B/A, A != 0 */
+        set_from_ratio(&num, a, tmin, tmax, QL_ROOT_TOUCH, out); /* -B/A, A != 0 */
         out->touch = 1;
         return;
     }
@@ -183,36 +194,31 @@ void quad_line_exact(const xp *a, const xp *b, const xp *c, const xp *t_thr, con
         return;
 
     /* Two roots: decisions from signs, values from the dd-rounded
-     * coefficients (each within 2u^2 of the exact one). */
-    int side_minus[2], side_plus[2];
-    double bound[2] = { tmin, tmax };
-    for (int k = 0; k < 2; k++) {
-        side_minus[k] = root_side(a, b, c, a_sign, bound[k], -1);
-        side_plus[k] = root_side(a, b, c, a_sign, bound[k], +1);
-    }
-    vdd av, bv, cv, gv;
+     * coefficients (each within 2u^2 of the exact one, so each root within
+     * ~30u^2 of itself: the terms of q share a sign). */
+    ddx av, bv, cv, gv;
     xp_dd(a, &av.hi, &av.lo);
     xp_dd(b, &bv.hi, &bv.lo);
     xp_dd(c, &cv.hi, &cv.lo);
     xp_dd(&g, &gv.hi, &gv.lo);
-    double s = sqrt(gv.hi);
-    vdd s2 = two_prod(s, s);
-    vdd root = dd_renorm((vdd){ s, (((gv.hi - s2.hi) - s2.lo) + gv.lo) / (s + s) });
-    double sigma = xp_sign(b) < 0 ? -1.0 : 1.0;
-    vdd sum = two_sum(bv.hi, sigma * root.hi);
-    vdd qq = dd_renorm((vdd){ -sum.hi, -(sum.lo + (bv.lo + sigma * root.lo)) });
-    vdd t_q_a = dd_mul_inv_dd(qq, av, 1.0 / av.hi);
-    vdd t_c_q = xp_sign(c) == 0 ? (vdd){ 0.0, 0.0 } : dd_mul_inv_dd(cv, qq, 1.0 / qq.hi);
-    vdd r_minus = sigma > 0.0 ? t_q_a : t_c_q, r_plus = sigma > 0.0 ? t_c_q : t_q_a;
+    av.err = bv.err = cv.err = gv.err = 0.0; /* the bound is the one above */
+    ddx root = ddx_sqrt(gv, gv.hi * 0.5);
+    int sigma = xp_sign(b) < 0 ? -1 : 1;
+    ddx qq = ddx_neg(ddx_add(bv, sigma > 0 ? root : ddx_neg(root)));
+    ddx t_q_a = ddx_div(qq, av);
+    ddx t_c_q = xp_sign(c) == 0 ? ddx_of(0.0) : ddx_div(cv, qq);
+    ddx r_minus = sigma > 0 ? t_q_a : t_c_q, r_plus = sigma > 0 ? t_c_q : t_q_a;
     int a_pos = a_sign > 0;
-    vdd r[2] = { a_pos ? r_minus : r_plus, a_pos ? r_plus : r_minus };
+    ddx r[2] = { a_pos ? r_minus : r_plus, a_pos ? r_plus : r_minus };
     for (int i = 0; i < 2; i++) {
-        int is_minus = a_pos ? i == 0 : i == 1;
-        const int *side = is_minus ? side_minus : side_plus;
+        int which = (a_pos ? i == 0 : i == 1) ? QL_ROOT_MINUS : QL_ROOT_PLUS;
         out->t_hi[i] = r[i].hi;
         out->t_lo[i] = r[i].lo;
-        out->in[i] = side[0] <= 0 && side[1] >= 0; /* tmin <= r <= tmax */
-        out->enter[i] = is_minus;
+        out->err[i] = 64.0 * U * U * fabs(r[i].hi) + DDX_TINY;
+        out->which[i] = which;
+        /* tmin <= r <= tmax */
+        out->in[i] = cmp_tau(a, b, c, which, tmin) >= 0 && cmp_tau(a, b, c, which, tmax) <= 0;
+        out->enter[i] = which == QL_ROOT_MINUS;
     }
     out->count = 2;
 }

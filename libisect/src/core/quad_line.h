@@ -41,35 +41,50 @@
 #ifndef ISECT_QUAD_LINE_H
 #define ISECT_QUAD_LINE_H
 
+#include "core/ddx.h"
 #include "core/expansion.h"
+
+/* Which root a reported crossing is (for exact comparisons). */
+enum {
+    QL_ROOT_MINUS  = -1, /* (-B - sqrt(G))/A: the entry */
+    QL_ROOT_PLUS   = 1,  /* (-B + sqrt(G))/A: the exit */
+    QL_ROOT_TOUCH  = 0,  /* -B/A, the tangency rule's single crossing */
+    QL_ROOT_LINEAR = 2   /* -C/(2B), the linear case's */
+};
 
 /* The answer of either path, t in the family's scaled units. */
 typedef struct quad_line_roots {
-    int    count;          /* crossings: 0, 1 (a touch, or the linear case), 2 */
-    int    touch;          /* count 1 by the tangency rule */
+    int    count;            /* crossings: 0, 1 (a touch, or the linear case), 2 */
+    int    touch;            /* count 1 by the tangency rule */
     double t_hi[2], t_lo[2]; /* increasing; each a renormalised double-double */
-    int    in[2];          /* the exact root lies in [tmin, tmax] */
-    int    enter[2];       /* Q' < 0 there (into the inside); a touch: 0 */
+    double err[2];           /* |exact root - (t_hi + t_lo)| <= err */
+    int    which[2];         /* QL_ROOT_* */
+    int    in[2];            /* the exact root lies in [tmin, tmax] */
+    int    enter[2];         /* Q' < 0 there (into the inside); a touch: 0 */
 } quad_line_roots;
 
-/* A, B, C, G as double-doubles (hi + lo, renormalised) with bounds on
- * their absolute errors, and upper bounds for T and L. */
+/* A, B, C, G as double-doubles with error bounds, and upper bounds for the
+ * thresholds T and L. */
 typedef struct quad_line_dd {
-    double a, a_lo, a_err;
-    double b, b_lo, b_err;
-    double c, c_lo, c_err;
-    double g, g_lo, g_err;
-    double t_thr;          /* >= T */
-    double l_thr;          /* >= L */
+    ddx    a, b, c, g;
+    double t_thr;            /* >= T */
+    double l_thr;            /* >= L */
 } quad_line_dd;
 
 /* 1 and *out filled when certified (see above); 0 when not: a touch, a
  * linear or near-linear A, a discriminant or a decision within its error
- * bound, or a root not certain to 1.5 ulp. */
+ * bound, or a root not certain to 1.5 ulp. tmin = -inf, tmax = +inf ask
+ * for the roots alone (every decision then certain). */
 int quad_line_certify(const quad_line_dd *q, double tmin, double tmax, quad_line_roots *out);
 
-/* The exact answer; t_thr and l_thr may be NULL (0). */
+/* The exact answer; t_thr and l_thr may be NULL (0). The values are within
+ * 64u^2 of each root (err says so). */
 void quad_line_exact(const xp *a, const xp *b, const xp *c, const xp *t_thr, const xp *l_thr,
                      double tmin, double tmax, quad_line_roots *out);
+
+/* sign(r - num/den), exactly, for the root r of kind `which` of the exact
+ * line function A, B, C (den != 0; a double tau is num = tau, den = 1). */
+int quad_line_cmp(const xp *a, const xp *b, const xp *c, int which, const xp *num,
+                  const xp *den);
 
 #endif /* ISECT_QUAD_LINE_H */

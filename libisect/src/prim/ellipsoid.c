@@ -99,8 +99,7 @@ static void line_dd(const ellipsoid_frame *fr, double eps, quad_line_dd *q)
         perp = ddx_add(perp, ddx_mul(ddx_mul(mu[i], mu[j]), ddx_sqr(m)));
     }
     ddx g = ddx_sub(ddx_mul(rr, a), perp);
-    *q = (quad_line_dd){ a.hi, a.lo, a.err, b.hi, b.lo, b.err, c.hi, c.lo, c.err,
-                         g.hi, g.lo, g.err, 0.0, 0.0 };
+    *q = (quad_line_dd){ a, b, c, g, 0.0, 0.0 };
     q->t_thr = eps * (rr.hi + rr.err) * (ddx_abs(a) + a.err) * (1.0 + 8.0 * DDX_U);
 }
 
