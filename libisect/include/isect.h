@@ -11,7 +11,11 @@
  *    transformed). Hits are reported for tmin <= t <= tmax only.
  *  - Functions that report hits return the number of hits found and write the
  *    first min(count, cap) of them, sorted by t (ties by prim), like snprintf.
- *    cap may be 0 with hits NULL to count only.
+ *    "By t" is by the exact crossing parameter: two crossings whose exact t
+ *    differ but round to the same double (a ray entering through a cap and
+ *    leaving through the side a few 1e-20 later) keep their exact order, so
+ *    an entry always precedes its exit. cap may be 0 with hits NULL to count
+ *    only.
  *  - A negative return value is an error status (ISECT_E_*); isect_strerror()
  *    describes it. Nothing is written to the hit buffer on error. No function
  *    aborts, prints, allocates (except mesh creation) or keeps global state;

@@ -59,10 +59,10 @@ static int64_t analytic_hits_all(const shape_family *f, const isect_shape *s,
     return count;
 }
 
-/* hits.c's order: (t, prim) lexicographic. */
+/* hits.c's order: by t, ties in kernel order (the exact order). */
 static inline int hit_before_first(const isect_hit *a, const isect_hit *b)
 {
-    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+    return a->t < b->t;
 }
 
 /*

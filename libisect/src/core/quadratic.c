@@ -53,13 +53,14 @@ int unit3_accurate(double out[3], const double v[3])
 {
     if (!unit3(out, v))
         return 0;
-    /* |n|^2 = 1 + e: exact squares, compensated sum, then n (3 - |n|^2)/2 */
+    /* |n|^2 = 1 + e: exact squares, compensated sum, then n (3 - |n|^2)/2
+     * as n + n delta (prim_lanes.h: lane_unit_newton, the same step) */
     comp_sum nn = { 0.0, 0.0 };
     for (int k = 0; k < 3; k++)
         comp_add_product(&nn, out[k], out[k]);
-    double scale = (1.5 - 0.5 * nn.hi) - 0.5 * nn.lo;
+    double delta = 0.5 * ((1.0 - nn.hi) - nn.lo);
     for (int k = 0; k < 3; k++)
-        out[k] = out[k] * scale + 0.0;
+        out[k] = (out[k] + out[k] * delta) + 0.0;
     return 1;
 }
 

@@ -49,9 +49,12 @@ void hit_set_miss(isect_hit *h, int32_t kind)
     h->kind = kind;
 }
 
+/* By t alone: the sort is stable, and every kernel emits its crossings in
+ * their exact order (ties by prim), so crossings whose t round to the same
+ * double keep that order (an entry before its exit). */
 static int hit_before(const isect_hit *a, const isect_hit *b)
 {
-    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+    return a->t < b->t;
 }
 
 int hits_finish(isect_hit *h, int count, const isect_ray *ray, const isect_params *prm,

@@ -128,11 +128,14 @@ static ALWAYS_INLINE void lane_hit_to_world(const isect_xform *x, lane_hit *h)
 }
 
 /*
- * n, nearly unit (|n|^2 = 1 + e, |e| <= 2^-20), made unit to within about
- * u: one Newton step for 1/sqrt, n (3 - |n|^2)/2 = n (1 - e/2 + O(e^2)),
- * with |n|^2 summed exactly enough (exact squares, compensated sum: e is
- * right to ~u^2), so that only the final products round. No square root,
- * no division.
+ * n, nearly unit (|n|^2 = 1 + e, |e| <= 2^-20), made unit to within u/2
+ * plus the components' own roundings: one Newton step for 1/sqrt,
+ * n (3 - |n|^2)/2 = n + n delta, delta = -e/2 (error O(e^2)), with |n|^2
+ * summed exactly enough (exact squares, compensated sum) and 1 - |n|^2
+ * taken exactly (Sterbenz), so that delta is right to ~u^2 and each
+ * component rounds once, in n_k + n_k delta: ||n| - 1| <= ~u (a scale
+ * factor 1 + delta rounded to a double would add another u). No square
+ * root, no division.
  */
 static ALWAYS_INLINE void lane_unit_newton(vd n[3])
 {
@@ -140,9 +143,9 @@ static ALWAYS_INLINE void lane_unit_newton(vd n[3])
     vdd s = two_sum(p0.hi, p1.hi);
     vdd s2 = two_sum(s.hi, p2.hi);
     vd lo = vd_add(vd_add(s.lo, s2.lo), vd_add(vd_add(p0.lo, p1.lo), p2.lo));
-    vd scale = vd_sub(vd_sub(vd_set1(1.5), vd_mul(vd_set1(0.5), s2.hi)), vd_mul(vd_set1(0.5), lo));
+    vd delta = vd_mul(vd_set1(0.5), vd_sub(vd_sub(vd_set1(1.0), s2.hi), lo));
     for (int k = 0; k < 3; k++)
-        n[k] = vd_mul(n[k], scale);
+        n[k] = vd_add(n[k], vd_mul(n[k], delta));
 }
 
 static ALWAYS_INLINE vd lane_max_abs3(vd a, vd b, vd c)
