@@ -55,7 +55,7 @@
 #include "core/expansion.h"
 #include "core/quad_line.h"
 #include "core/ratio.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 /* The problem in scaled units; t = t' * 2^t_shift. */

@@ -36,7 +36,7 @@
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 /* The ellipsoid and the ray at the common scale. */

@@ -19,7 +19,7 @@
 #include "prim/prim.h"
 #include "prim/plane_lanes.h"
 #include "core/expansion.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/ratio.h"
 #include "core/vec3.h"
 

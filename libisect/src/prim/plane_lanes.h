@@ -22,7 +22,7 @@
 #define ISECT_PLANE_LANES_H
 
 #include "prim/prim_lanes.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 
 #define PLANE_LANES_U   0x1p-53
 #define PLANE_LANES_U2  0x1p-106

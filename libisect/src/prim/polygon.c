@@ -9,7 +9,7 @@
 #include "core/ratio.h"
 #include "core/expansion.h"
 #include "core/predicates.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 #include <stddef.h>

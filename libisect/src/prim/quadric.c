@@ -3,22 +3,25 @@
  *     Q(x) = Ax^2 + By^2 + Cz^2 + Dxy + Exz + Fyz + Gx + Hy + Iz + J = 0,
  * a solid with inside Q < 0 (a closed set for contains: Q <= 0); prim -1.
  *
- * Along the line, Q(org + t dir) = a t^2 + b t + c with
- *     a = Q2(dir) (the quadratic part), b = grad Q(org) . dir, c = Q(org).
+ * Along the line, Q(org + t dir) = a t^2 + 2b t + c (core/quad_line.h) with
+ *     a = Q2(dir) (the quadratic part), b = grad Q(org) . dir / 2, c = Q(org),
+ * each formed as a double-double with an error bound (core/ddx.h), and the
+ * discriminant b^2 - ac from them; quad_line_certify certifies the
+ * crossings, and where it cannot (a touch or near-touch, the linear case, a
+ * decision within the bounds) the same coefficients as exact expansions
+ * decide exactly (quad_line_exact). Rules:
  *  - Linear case, |a| <= eps S |dir|^2 with S = max(|A|..|F|) (a ray
  *    parallel to a cone's generator or a paraboloid's axis, a plane written
- *    as a quadric, where S = 0 and a = 0): one root t = -c/b; b = 0 too
- *    (the line misses, or lies in the surface): no hit.
- *  - Otherwise quadratic_roots() (quadratic.c): disc = b^2 - 4ac by Kahan's
- *    FMA algorithm plus the first-order terms of the coefficients' low
- *    parts (a, b, c are compensated sums, known to about twice the working
- *    precision); TOUCH when |b^2 - 4ac| <= eps (b^2 + 4|ac|), at -b/2a;
- *    roots by q = -(b + sign(b) sqrt(disc))/2, t = q/a, c/q.
- *  - Kinds from the sign pattern of a t^2 + b t + c, exact in real
- *    arithmetic: a > 0 is negative (inside) between the roots, so ENTER then
- *    EXIT; a < 0 the reverse; linear: ENTER when b < 0 (Q decreasing).
- *  - Normal: unit(grad Q) at the hit; where the gradient vanishes (a cone's
- *    apex) it faces the ray as the kind says (normal_or_facing).
+ *    as a quadric, where S = 0 and a = 0): one root t = -c/(2b), ENTER when
+ *    b < 0 (Q decreasing); b = 0 too (the line misses, or lies in the
+ *    surface): no hit.
+ *  - TOUCH when |b^2 - ac| <= eps (b^2 + |ac|), at -b/a.
+ *  - Otherwise two crossings: the entry into Q < 0 where Q' < 0 (for a > 0
+ *    the first, for a < 0 the second), the exit at the other.
+ *  - Normal: unit(grad Q) at the point org + t dir formed from the
+ *    double-double t (so far rays keep it on the surface); where the
+ *    gradient vanishes (a cone's apex) it faces the ray as the kind says
+ *    (normal_or_facing).
  *  - All ten coefficients zero: degenerate (no hits, nothing inside).
  *
  * Scaling. Coordinates are taken in units of 2^e_pos (the power of two of
@@ -27,12 +30,13 @@
  * ten are then divided by the power of two that brings the largest into
  * [0.5, 1), and dir gets its own power of two. Every step is exact (barring
  * underflow of terms 2^1022 times below the largest), so signs and roots
- * are those of the coefficients as given, while a, b, c, the discriminant
- * and the gradient are bounded numbers that cannot overflow.
+ * are those of the coefficients as given.
  */
 #include "prim/prim.h"
+#include "core/ddx.h"
 #include "core/expansion.h"
-#include "core/quadratic.h"
+#include "core/quad_line.h"
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 #include <limits.h>
@@ -92,52 +96,109 @@ static const int quad_term[6][3] = {
     { QA, 0, 0 }, { QB, 1, 1 }, { QC, 2, 2 }, { QD, 0, 1 }, { QE, 0, 2 }, { QF, 1, 2 }
 };
 
-/*
- * Q(p) by a compensated sum of its monomials: accurate as if evaluated in
- * twice the precision. contains() uses it, and so does the root finder for
- * c = Q(org), so contains(org) agrees with the sign the roots come from.
- */
-static comp_sum q_sum(const double q[10], const double p[3])
+/* The line function's coefficients, certified: a = Q2(d), b = (grad Q(o)
+ * . d)/2 (each monomial's two halves), c = Q(o). */
+static void line_dd(const double q[10], const double o[3], const double d[3], double eps,
+                    quad_line_dd *out)
 {
-    comp_sum s = { 0.0, 0.0 };
-    for (int k = 0; k < 6; k++)
-        comp_add_product3(&s, q[quad_term[k][0]], p[quad_term[k][1]], p[quad_term[k][2]]);
-    for (int i = 0; i < 3; i++)
-        comp_add_product(&s, q[QG + i], p[i]);
-    comp_add(&s, q[QJ]);
-    return s;
+    ddx a = ddx_of(0.0), b = ddx_of(0.0), c = ddx_of(q[QJ]);
+    double s_max = 0.0;
+    for (int k = 0; k < 6; k++) {
+        ddx coef = ddx_of(q[quad_term[k][0]]);
+        int i = quad_term[k][1], j = quad_term[k][2];
+        s_max = fmax(s_max, fabs(coef.hi));
+        a = ddx_add(a, ddx_mul_d(ddx_mul_d(coef, d[i]), d[j]));
+        ddx half = ddx_mul_d(coef, 0.5);
+        b = ddx_add(b, ddx_mul_d(ddx_mul_d(half, o[i]), d[j]));
+        b = ddx_add(b, ddx_mul_d(ddx_mul_d(half, d[i]), o[j]));
+        c = ddx_add(c, ddx_mul_d(ddx_mul_d(coef, o[i]), o[j]));
+    }
+    for (int i = 0; i < 3; i++) {
+        b = ddx_add(b, ddx_mul_d(ddx_of(0.5 * q[QG + i]), d[i]));
+        c = ddx_add(c, ddx_mul_d(ddx_of(q[QG + i]), o[i]));
+    }
+    ddx bb = ddx_sqr(b), ac = ddx_mul(a, c);
+    out->a = a;
+    out->b = b;
+    out->c = c;
+    out->g = ddx_sub(bb, ac);
+    double up = 1.0 + 8.0 * DDX_U;
+    out->t_thr = eps * (ddx_abs(bb) + bb.err + ddx_abs(ac) + ac.err) * up;
+    out->l_thr = eps * s_max * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * up;
 }
 
-/*
- * a = Q2(dir), b = grad Q(org).dir, c = Q(org), each a compensated sum of
- * its monomials kept as hi + lo, so the discriminant quadratic_roots forms
- * from them is accurate too (a plainly evaluated c or b would carry an
- * error of u times the largest monomial, which near tangency dominates
- * b^2 - 4ac).
- */
-static void line_coefficients(const double q[10], const double org[3], const double dir[3],
-                              comp_sum *a, comp_sum *b, comp_sum *c)
+/* The same, exactly: a, b, c, the tangency threshold eps (b^2 + |ac|) and
+ * the linear one eps S |d|^2. Halving is exact (a power of two). */
+static void line_exact(const double q[10], const double o[3], const double d[3], double eps,
+                       double tmin, double tmax, quad_line_roots *out)
 {
-    comp_sum sa = { 0.0, 0.0 }, sb = { 0.0, 0.0 };
+    xp a, b, c, term, thr, lin, tmp;
+    xp_set(&a, 0.0);
+    xp_set(&b, 0.0);
+    xp_set(&c, q[QJ]);
+    double s_max = 0.0;
     for (int k = 0; k < 6; k++) {
         double coef = q[quad_term[k][0]];
         int i = quad_term[k][1], j = quad_term[k][2];
-        comp_add_product3(&sa, coef, dir[i], dir[j]);
-        comp_add_product3(&sb, coef, org[i], dir[j]);
-        comp_add_product3(&sb, coef, dir[i], org[j]);
+        s_max = fmax(s_max, fabs(coef));
+        xp_set(&term, coef);
+        xp_scale(&term, &term, d[i]);
+        xp_scale(&term, &term, d[j]);
+        xp_add(&a, &a, &term);
+        xp_set(&term, 0.5 * coef);
+        xp_scale(&term, &term, o[i]);
+        xp_scale(&term, &term, d[j]);
+        xp_add(&b, &b, &term);
+        xp_set(&term, 0.5 * coef);
+        xp_scale(&term, &term, d[i]);
+        xp_scale(&term, &term, o[j]);
+        xp_add(&b, &b, &term);
+        xp_set(&term, coef);
+        xp_scale(&term, &term, o[i]);
+        xp_scale(&term, &term, o[j]);
+        xp_add(&c, &c, &term);
     }
-    for (int i = 0; i < 3; i++)
-        comp_add_product(&sb, q[QG + i], dir[i]);
-    *a = comp_normalized(sa);
-    *b = comp_normalized(sb);
-    *c = comp_normalized(q_sum(q, org));
+    for (int i = 0; i < 3; i++) {
+        xp_set(&term, 0.5 * q[QG + i]);
+        xp_scale(&term, &term, d[i]);
+        xp_add(&b, &b, &term);
+        xp_set(&term, q[QG + i]);
+        xp_scale(&term, &term, o[i]);
+        xp_add(&c, &c, &term);
+    }
+    xp_mul(&thr, &b, &b);
+    xp_mul(&tmp, &a, &c);
+    if (xp_sign(&tmp) < 0)
+        xp_scale(&tmp, &tmp, -1.0);
+    xp_add(&thr, &thr, &tmp);
+    xp_scale(&thr, &thr, eps);
+    xp_set(&lin, 0.0);
+    for (int k = 0; k < 3; k++) {
+        xp_set(&tmp, d[k]);
+        xp_scale(&tmp, &tmp, d[k]);
+        xp_add(&lin, &lin, &tmp);
+    }
+    xp_scale(&lin, &lin, s_max);
+    xp_scale(&lin, &lin, eps);
+    quad_line_exact(&a, &b, &c, &thr, &lin, tmin, tmax, out);
 }
 
-static void q_gradient(const double q[10], const double x[3], double g[3])
+/* grad Q at the point o + t d, t a double-double (scaled units). */
+static void gradient_at(const double q[10], const double o[3], const double d[3], double t_hi,
+                        double t_lo, double g[3])
 {
-    g[0] = 2.0 * q[QA] * x[0] + q[QD] * x[1] + q[QE] * x[2] + q[QG];
-    g[1] = q[QD] * x[0] + 2.0 * q[QB] * x[1] + q[QF] * x[2] + q[QH];
-    g[2] = q[QE] * x[0] + q[QF] * x[1] + 2.0 * q[QC] * x[2] + q[QI];
+    ddx t = { t_hi, t_lo, 0.0 }, x[3];
+    for (int k = 0; k < 3; k++)
+        x[k] = ddx_add(ddx_of(o[k]), ddx_mul_d(t, d[k]));
+    static const int mixed[3][3] = { { QA, QD, QE }, { QD, QB, QF }, { QE, QF, QC } };
+    for (int k = 0; k < 3; k++) {
+        ddx sum = ddx_of(q[QG + k]);
+        for (int j = 0; j < 3; j++) {
+            double coef = q[mixed[k][j]] * (j == k ? 2.0 : 1.0);
+            sum = ddx_add(sum, ddx_mul_d(x[j], coef));
+        }
+        g[k] = sum.hi;
+    }
 }
 
 int quadric_check(const isect_shape *s)
@@ -152,50 +213,40 @@ int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
         return 0;
     int e_pos = position_exponent(s->data, ray->org);
     int e_dir = pow2_exponent(max_abs3(ray->dir));
+    int t_shift = e_pos - e_dir;
     double q[10], org[3], dir[3];
     scaled_coefficients(s->data, e_pos, q);
     scale3(org, ray->org, e_pos);
     scale3(dir, ray->dir, e_dir);
+    double tmin = pow2_scale(ray->tmin, -t_shift), tmax = pow2_scale(ray->tmax, -t_shift);
 
-    comp_sum a, b, c; /* normalised: hi is the rounded value */
-    line_coefficients(q, org, dir, &a, &b, &c);
-    double s_max = 0.0;
-    for (int i = QA; i <= QF; i++)
-        s_max = fmax(s_max, fabs(q[i]));
-
-    /* Roots in scaled units (t = t' 2^(e_pos - e_dir)) and their kinds. */
-    double roots[2];
-    int32_t kinds[2];
-    int count;
-    if (fabs(a.hi) <= prm->eps * s_max * v3_dot(dir, dir)) {
-        if (b.hi == 0.0)
-            return 0;
-        count = 1;
-        roots[0] = -c.hi / b.hi;
-        kinds[0] = b.hi < 0.0 ? ISECT_ENTER : ISECT_EXIT;
-    } else {
-        quad_roots qr;
-        quadratic_roots(a, b, c, prm->eps, &qr);
-        count = qr.count;
-        roots[0] = qr.t[0];
-        roots[1] = qr.t[1];
-        kinds[0] = count == 1 ? ISECT_TOUCH : (a.hi > 0.0 ? ISECT_ENTER : ISECT_EXIT);
-        kinds[1] = a.hi > 0.0 ? ISECT_EXIT : ISECT_ENTER;
-    }
+    quad_line_dd line;
+    line_dd(q, org, dir, prm->eps, &line);
+    quad_line_roots roots;
+    if (!quad_line_certify(&line, tmin, tmax, &roots))
+        line_exact(q, org, dir, prm->eps, tmin, tmax, &roots);
 
     int kept = 0;
-    for (int i = 0; i < count; i++) {
-        double t = ldexp(roots[i], e_pos - e_dir) + 0.0;
-        if (!isfinite(t))
+    for (int i = 0; i < roots.count; i++) {
+        if (!roots.in[i])
+            continue;
+        double t_hi = pow2_scale(roots.t_hi[i], t_shift) + 0.0;
+        double t_lo = pow2_scale(roots.t_lo[i], t_shift);
+        if (!isfinite(t_hi))
             continue; /* beyond the double range: not reported */
-        double x[3], g[3], normal[3];
-        v3_madd(x, org, roots[i], dir);
-        q_gradient(q, x, g);
-        normal_or_facing(normal, g, ray->dir, kinds[i]);
-        hit_set(&out[kept++], ray, t, normal, -1, kinds[i]);
+        int32_t kind = roots.touch ? ISECT_TOUCH : roots.enter[i] ? ISECT_ENTER : ISECT_EXIT;
+        double g[3], normal[3];
+        gradient_at(q, org, dir, roots.t_hi[i], roots.t_lo[i], g);
+        if (!unit3_accurate(normal, g))
+            normal_or_facing(normal, g, ray->dir, kind);
+        hit_set_dd(&out[kept++], ray, t_hi, t_lo, normal, -1, kind);
     }
     return kept;
 }
+
+/* Q(x) (scaled coordinates) certified as a double-double, exactly where
+ * its bound straddles 0 (below). */
+static int side_sign(const double q[10], const double x[3]);
 
 int quadric_contains(const isect_shape *s, const double p[3])
 {
@@ -205,22 +256,13 @@ int quadric_contains(const isect_shape *s, const double p[3])
     double q[10], x[3];
     scaled_coefficients(s->data, e_pos, q);
     scale3(x, p, e_pos);
-    comp_sum value = q_sum(q, x);
-    return comp_value(&value) <= 0.0;
+    return side_sign(q, x) <= 0;
 }
 
-/* Q(p) exactly, in the scaled coordinates of quadric_contains (the scaling
- * is exact and keeps the sign): each monomial coefficient * x * y as an
- * expansion. */
-int quadric_side_test(const isect_shape *s, const double p[3], int32_t prim)
+/* Q(x) exactly (scaled coordinates; the scaling is exact and keeps the
+ * sign): each monomial coefficient * x * y as an expansion. */
+static int side_exact(const double q[10], const double x[3])
 {
-    (void)prim;
-    if (all_zero(s->data))
-        return 1;
-    int e_pos = position_exponent(s->data, p);
-    double q[10], x[3];
-    scaled_coefficients(s->data, e_pos, q);
-    scale3(x, p, e_pos);
     xp sum, term;
     xp_set(&sum, q[QJ]);
     for (int k = 0; k < 6; k++) {
@@ -235,4 +277,26 @@ int quadric_side_test(const isect_shape *s, const double p[3], int32_t prim)
         xp_add(&sum, &sum, &term);
     }
     return xp_sign(&sum);
+}
+
+static int side_sign(const double q[10], const double x[3])
+{
+    static const double none[3] = { 0.0, 0.0, 0.0 };
+    quad_line_dd line;
+    line_dd(q, x, none, 0.0, &line); /* c = Q(x) */
+    if (fabs(line.c.hi) * (1.0 - 2.0 * DDX_U) > line.c.err)
+        return line.c.hi > 0.0 ? 1 : -1;
+    return side_exact(q, x);
+}
+
+int quadric_side_test(const isect_shape *s, const double p[3], int32_t prim)
+{
+    (void)prim;
+    if (all_zero(s->data))
+        return 1;
+    int e_pos = position_exponent(s->data, p);
+    double q[10], x[3];
+    scaled_coefficients(s->data, e_pos, q);
+    scale3(x, p, e_pos);
+    return side_exact(q, x);
 }

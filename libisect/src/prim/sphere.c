@@ -21,7 +21,7 @@
 #include "prim/prim.h"
 #include "prim/sphere_lanes.h"
 #include "core/expansion.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 /* ---------------------------------------------------------------- sphere */

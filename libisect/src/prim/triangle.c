@@ -7,7 +7,7 @@
 #include "prim/triangle_test.h"
 #include "prim/triangle_lanes.h"
 #include "core/expansion.h"
-#include "core/quadratic.h"
+#include "core/scaling.h"
 #include "core/ratio.h"
 
 #include <string.h>

@@ -1,26 +1,17 @@
 /*
- * quadratic.h — the root finding shared by the quadric family (sphere,
- * ellipsoid, cylinder side, general quadric), written once and free of
- * cancellation.
+ * scaling.h — the numeric groundwork every primitive shares: power-of-two
+ * scaling (exact, so numbers can be brought near 1 before anything is
+ * squared), compensated sums, accurate cross products and unit vectors.
  *
- *  - line_sphere_roots(): a line against a sphere in the geometric form of
- *    Haines, Günther & Akenine-Möller, "Precision Improvements for Ray/Sphere
- *    Intersection" (Ray Tracing Gems, 2019). The sphere, the ellipsoid (a
- *    unit sphere in the frame scaled by 1/radii) and the cylinder side (a
- *    circle in the plane across the axis) all reduce to it.
- *  - quadratic_roots(): a t^2 + b t + c = 0 for the general quadric, with the
- *    discriminant evaluated by Kahan's FMA algorithm from coefficients known
- *    to twice the working precision (compensated sums).
- *
- * Scaling. Every routine here, and every caller, brings its numbers to a
- * common power-of-two scale before squaring anything (pow2_exponent,
- * scale3). Multiplying by a power of two is exact (barring underflow of parts
- * 2^1022 times smaller than the largest), so the results are those of the
- * unscaled arithmetic, while no square, product or difference can overflow
- * or lose its bits to underflow at any input magnitude.
+ * Scaling. The primitives bring their numbers to a common power-of-two
+ * scale before squaring anything (pow2_exponent, scale3). Multiplying by a
+ * power of two is exact (barring underflow of parts 2^1022 times smaller
+ * than the largest), so the results are those of the unscaled arithmetic,
+ * while no square, product or difference can overflow or lose its bits to
+ * underflow at any input magnitude.
  */
-#ifndef ISECT_QUADRATIC_H
-#define ISECT_QUADRATIC_H
+#ifndef ISECT_SCALING_H
+#define ISECT_SCALING_H
 
 #include "core/predicates.h"
 
@@ -29,25 +20,6 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
-
-/* The crossings of a line with a sphere. */
-typedef struct line_sphere {
-    int    count;        /* 0: miss; 1: tangent (one TOUCH at t[0]);
-                            2: enters at t[0], leaves at t[1] (t[0] <= t[1]) */
-    double t[2];         /* line parameters */
-    double normal[2][3]; /* unit outward normal at each crossing: the
-                            direction from the centre to the point */
-} line_sphere;
-
-/*
- * Crossings of the line f + t*d with the sphere |x| = r: f is the line's
- * point relative to the centre, d != 0, r > 0, all finite, any scale.
- * Tangent when |r^2 - h^2| <= eps*r^2, h the distance from the centre to
- * the line (r^2 - h^2 formed from f x d to about twice the working
- * precision); then one hit at the foot of the perpendicular.
- */
-void line_sphere_roots(const double f[3], const double d[3], double r, double eps,
-                       line_sphere *out);
 
 /*
  * A compensated sum (Ogita, Rump & Oishi 2005, Sum2/Dot2): hi + lo carries
@@ -79,50 +51,10 @@ static inline void comp_add_product(comp_sum *s, double x, double y)
     comp_add(s, p);
 }
 
-/* x*y*z: the residual of x*y times z is a second-order term, added plainly. */
-static inline void comp_add_product3(comp_sum *s, double x, double y, double z)
-{
-    double p = x * y;
-    s->lo += product_error(x, y, p) * z;
-    comp_add_product(s, p, z);
-}
-
 static inline double comp_value(const comp_sum *s)
 {
     return s->hi + s->lo;
 }
-
-/* The same sum as hi = comp_value(s) plus the exact remainder lo (TwoSum,
- * which, unlike Fast2Sum, needs no |hi| >= |lo|: after cancellation the
- * running hi may be the smaller part). */
-static inline comp_sum comp_normalized(comp_sum s)
-{
-    comp_sum n = { 0.0, 0.0 };
-    comp_add(&n, s.hi);
-    comp_add(&n, s.lo);
-    return n;
-}
-
-/* The real roots of a quadratic. */
-typedef struct quad_roots {
-    int    count; /* 0; 1: double root (tangent); 2: t[0] <= t[1] */
-    double t[2];
-} quad_roots;
-
-/*
- * Roots of a t^2 + b t + c = 0, each coefficient given as an unevaluated
- * sum hi + lo (a compensated sum, so that the coefficients may be known to
- * about twice the working precision); a != 0, all finite, any scale.
- * Double root (count 1, t = -b/2a) when |b^2 - 4ac| <= eps*(b^2 + 4|ac|).
- * A root beyond the double range comes out as +-inf.
- */
-void quadratic_roots(comp_sum a, comp_sum b, comp_sum c, double eps, quad_roots *out);
-
-/* v.v - r*r with error-free products and a compensated sum (Ogita, Rump &
- * Oishi 2005, Dot2): as accurate as if evaluated in twice the precision and
- * then rounded. Its sign is the closed-ball test |v| <= r. The caller keeps
- * |v| and r below 2^500 (scaled), so nothing overflows. */
-double sumsq_minus_sq(const double v[3], double r);
 
 /* r = x cross y, each component a*d - b*c by det2_accurate (Kahan's FMA
  * algorithm, relative error <= 2u per component whatever the cancellation). */
@@ -215,4 +147,4 @@ int unit3_accurate(double out[3], const double v[3]);
  */
 void normal_or_facing(double normal[3], const double v[3], const double d[3], int32_t kind);
 
-#endif /* ISECT_QUADRATIC_H */
+#endif /* ISECT_SCALING_H */
