@@ -134,4 +134,17 @@ static inline ddx ddx_div(ddx x, ddx y)
     return r;
 }
 
+/* sign(x - y) where the bounds decide it (an exact zero only when both are
+ * exact), else 2. */
+static inline int ddx_cmp_certain(ddx x, ddx y)
+{
+    ddx diff = ddx_sub(x, y);
+    double bound = x.err + y.err + diff.err;
+    if (bound == 0.0)
+        return (diff.hi > 0.0) - (diff.hi < 0.0);
+    if (fabs(diff.hi) * (1.0 - 2.0 * DDX_U) > bound)
+        return diff.hi > 0.0 ? 1 : -1;
+    return 2;
+}
+
 #endif /* ISECT_DDX_H */

@@ -5,27 +5,29 @@
 
 #include <math.h>
 
-/* sign(num - tau den) * sign(den): >= 0 exactly when t >= tau. */
-static int compare_t(const xp *num, const xp *den, int den_sign, double tau)
+int ratio_cmp_tau(const xp *num, const xp *den, double tau)
 {
     if (isinf(tau))
         return tau < 0.0 ? 1 : -1;
     xp scaled, diff;
     xp_scale(&scaled, den, tau);
     xp_sub(&diff, num, &scaled);
-    return xp_sign(&diff) * den_sign;
+    return xp_sign(&diff) * xp_sign(den);
 }
 
-int ratio_decide(const xp *num, const xp *den, double tmin, double tmax, int *in_range,
-                 double *t_hi, double *t_lo)
+int ratio_cmp(const xp *n1, const xp *d1, const xp *n2, const xp *d2)
 {
-    int den_sign = xp_sign(den);
-    if (den_sign == 0)
-        return 0;
-    *in_range = compare_t(num, den, den_sign, tmin) >= 0
-             && compare_t(num, den, den_sign, tmax) <= 0;
-    /* t to double-double: the quotient of the rounded values, then the
-     * exact residual num - q den divided once more. */
+    xp a, b;
+    xp_mul(&a, n1, d2);
+    xp_mul(&b, n2, d1);
+    xp_sub(&a, &a, &b);
+    return xp_sign(&a) * xp_sign(d1) * xp_sign(d2);
+}
+
+void ratio_value(const xp *num, const xp *den, double *t_hi, double *t_lo)
+{
+    /* the quotient of the rounded values, then the exact residual num - q
+     * den divided once more */
     double nh, nl, dh, dl;
     xp_dd(num, &nh, &nl);
     xp_dd(den, &dh, &dl);
@@ -39,6 +41,15 @@ int ratio_decide(const xp *num, const xp *den, double tmin, double tmax, int *in
     double hi = q + corr;
     *t_hi = hi;
     *t_lo = corr - (hi - q); /* Fast2Sum: |q| >= |corr| */
+}
+
+int ratio_decide(const xp *num, const xp *den, double tmin, double tmax, int *in_range,
+                 double *t_hi, double *t_lo)
+{
+    if (xp_sign(den) == 0)
+        return 0;
+    *in_range = ratio_cmp_tau(num, den, tmin) >= 0 && ratio_cmp_tau(num, den, tmax) <= 0;
+    ratio_value(num, den, t_hi, t_lo);
     return 1;
 }
 

@@ -18,6 +18,15 @@
 int ratio_decide(const xp *num, const xp *den, double tmin, double tmax, int *in_range,
                  double *t_hi, double *t_lo);
 
+/* sign(num/den - tau), exactly (den != 0; tau may be infinite). */
+int ratio_cmp_tau(const xp *num, const xp *den, double tau);
+
+/* sign(n1/d1 - n2/d2), exactly (d1, d2 != 0). */
+int ratio_cmp(const xp *n1, const xp *d1, const xp *n2, const xp *d2);
+
+/* num/den as a double-double, within 4u^2 |t| (t_hi = t rounded); den != 0. */
+void ratio_value(const xp *num, const xp *den, double *t_hi, double *t_lo);
+
 /* The epsilon policy's parallel test |den| <= eps sqrt(nn dd) (den = n.dir,
  * nn = |n|^2, dd = |dir|^2), exactly: 1 parallel, 0 not. With eps = 0 it is
  * den == 0. The squares are taken after scaling den and eps by one power
