@@ -345,15 +345,17 @@ static void test_box_edges_corners(void)
     CHECK_EQ_INT(box(&r, NULL, h), 1);
     CHECK_BOX_HIT(h[0], 1, 0, 0, 0, 0, ISECT_TOUCH);
 
-    /* Out through the edge x = 1, y = 2 with inexact data: dir (1.1,4.4,0)
-     * from (-0.1,-2.4,2): x [1/11, 1], y [6/11, 1] (both ends round to 1.0).
-     * In by face 2 at (0.5,0,2); out at t = 1 (faces 1, 3 tie -> 1) at
-     * (1,2,2): -2.4 + 1*4.4 rounds to 2 + 2^-51, outside the box, so the
-     * point must be pulled back onto it. */
+    /* Out near the edge x = 1, y = 2 with inexact data: dir (1.1,4.4,0)
+     * from (-0.1,-2.4,2): x [1/11, 1], y [6/11, 1] in real numbers, but the
+     * given doubles put the y exit (2 + 2.4)/4.4 about 2.5e-17 before the x
+     * exit (1 + 0.1)/1.1 (exact rationals; both round to 1 - 2^-53), so the
+     * exit is face 3, decided exactly, not a tie of rounded values. In by
+     * face 2 at (0.5,0,2); out at (1,2,2) (-2.4 + t*4.4 would round above
+     * 2, outside the box, so the point must be pulled back onto it). */
     r = ray_of(-0.1, -2.4, 2, 1.1, 4.4, 0);
     CHECK_EQ_INT(box(&r, NULL, h), 2);
     CHECK_BOX_HIT(h[0], 6.0 / 11.0, 0.5, 0, 2, 2, ISECT_ENTER);
-    CHECK_BOX_HIT(h[1], 1, 1, 2, 2, 1, ISECT_EXIT);
+    CHECK_BOX_HIT(h[1], 1, 1, 2, 2, 3, ISECT_EXIT);
     CHECK(h[1].point[1] <= 2.0);
 
     /* Just past that edge: dir (1,2.5,0) from (-1,0,2): x [1,2], y [0,0.8]. */

@@ -23,20 +23,25 @@
  *    lower of the two indices and that face's outward normal (which is the
  *    lowest index of all faces the line crosses there). Its point lies on
  *    both faces and is snapped onto both planes.
- *  - Ties and TOUCH are decided on the computed t values, which are correctly
- *    rounded quotients whenever lo - org (resp. hi - org) is exact, as it is
- *    for the dyadic coordinates of test cases; two exactly equal slab
- *    parameters therefore always compare equal. Two distinct parameters that
- *    round to the same double count as a tie too (no exact arithmetic here:
- *    this kernel is on the batch hot path).
+ *  - Ties, TOUCH and [tmin, tmax] are decided exactly. The fast loop keeps
+ *    a bound on each t (the quotient's rounding and that of lo - org: at
+ *    most 2u|t|, taken as 2.5u|t| + 2^-1070 for the roundings of the bound
+ *    itself); where two compared values (or a value and tmin / tmax) are
+ *    within their bounds — an exact tie, a line through an edge, an origin
+ *    on a face — or a t is infinite, the whole box is redone by the exact
+ *    path, which compares the crossings (plane - org)/dir as ratios of
+ *    expansions (core/ratio.c).
  *
- * Hits are for the whole line; the dispatcher keeps tmin <= t <= tmax, so an
- * origin inside the box yields only the EXIT, and an origin on a face yields
- * the hit at t = 0 (reported as +0.0, never -0.0).
+ * The kernel reports the hits in [tmin, tmax] (the dispatcher's range filter
+ * then keeps them all: t is clamped into the interval where its rounding
+ * left it), so an origin inside the box yields only the EXIT, and an origin
+ * on a face the hit at t = 0 (reported as +0.0, never -0.0).
  *
  * Flat boxes (lo == hi on an axis) are degenerate: no hits, no points inside.
  */
 #include "prim/prim.h"
+#include "core/expansion.h"
+#include "core/ratio.h"
 
 #include <float.h>
 
@@ -99,12 +104,87 @@ int aabb_check(const isect_shape *s)
     return ISECT_OK;
 }
 
+/* The faces' crossings as exact ratios (plane - org)/dir. */
+static void face_ratio(const double *bound, const isect_ray *ray, int face, xp *num, xp *den)
+{
+    int a = face >> 1;
+    xp_diff(num, bound[3 * (face & 1) + a], ray->org[a]);
+    xp_set(den, ray->dir[a]);
+}
+
+/* sign(t_f - t_g) for the crossings of faces f and g (g < 0: t = -inf for
+ * an entry, +inf for an exit, given by `none`). */
+static int face_cmp(const double *bound, const isect_ray *ray, int f, int g, int none)
+{
+    if (g < 0)
+        return -none;
+    xp nf, df, ng, dg;
+    face_ratio(bound, ray, f, &nf, &df);
+    face_ratio(bound, ray, g, &ng, &dg);
+    return ratio_cmp(&nf, &df, &ng, &dg);
+}
+
+/* One hit on `face` if its exact t lies in [tmin, tmax]; t to a double-double
+ * rounded once, clamped into the interval. */
+static int face_emit(const double *bound, const isect_ray *ray, int face, int also_on, int32_t kind,
+                     isect_hit *out)
+{
+    xp num, den;
+    face_ratio(bound, ray, face, &num, &den);
+    if (ratio_cmp_tau(&num, &den, ray->tmin) < 0 || ratio_cmp_tau(&num, &den, ray->tmax) > 0)
+        return 0;
+    double t_hi, t_lo;
+    ratio_value(&num, &den, &t_hi, &t_lo);
+    if (!isfinite(t_hi))
+        return 0;
+    box_hit(out, ray, bound, fmin(fmax(t_hi, ray->tmin), ray->tmax), face, also_on, kind);
+    return 1;
+}
+
+/* The exact path: the same selection with every comparison exact. */
+static int aabb_exact(const double *bound, const isect_ray *ray, isect_hit out[ISECT_MAX_HITS])
+{
+    int face_enter = -1, face_exit = -1;
+    for (int a = 0; a < 3; a++) {
+        double d = ray->dir[a];
+        if (d == 0.0)
+            continue; /* decided by the fast loop: the origin is inside the slab */
+        int backward = d < 0.0;
+        int near = 2 * a + backward, far = 2 * a + 1 - backward;
+        if (face_cmp(bound, ray, near, face_enter, -1) > 0)
+            face_enter = near;
+        if (face_cmp(bound, ray, far, face_exit, 1) < 0)
+            face_exit = far;
+    }
+    int order = face_cmp(bound, ray, face_enter, face_exit, 1);
+    if (order > 0)
+        return 0;
+    if (order == 0) {
+        int low = face_enter < face_exit ? face_enter : face_exit;
+        return face_emit(bound, ray, low, face_enter + face_exit - low, ISECT_TOUCH, &out[0]);
+    }
+    int count = face_emit(bound, ray, face_enter, face_enter, ISECT_ENTER, &out[0]);
+    return count + face_emit(bound, ray, face_exit, face_exit, ISECT_EXIT, &out[count]);
+}
+
+/* 2.5u: the bound on |t - exact| per unit |t| (see the top of the file). */
+#define SLAB_ERR 0x1.4p-52
+#define SLAB_TINY 0x1p-1070
+
+/* t and tau are separated by more than err (false for NaN, and for an
+ * infinite t, whose err is infinite). */
+static inline int apart(double t, double tau, double err)
+{
+    return fabs(t - tau) > err;
+}
+
 int aabb_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
               isect_hit out[ISECT_MAX_HITS])
 {
     const double *bound = s->data; /* lo[3], hi[3] */
-    double t_enter = -INFINITY, t_exit = INFINITY;
+    double t_enter = -INFINITY, t_exit = INFINITY, e_enter = 0.0, e_exit = 0.0;
     int face_enter = -1, face_exit = -1;
+    int certain = 1;
     (void)prm; /* no tolerance: faces are exact planes, corners are ties */
 
     /* The outcomes below are data-dependent (random rays mispredict half of
@@ -126,33 +206,35 @@ int aabb_hits(const isect_shape *s, const isect_ray *ray, const isect_params *pr
         int backward = d < 0.0;
         double t_near = slab_t(bound[3 * backward + a], o, d);
         double t_far = slab_t(bound[3 * (1 - backward) + a], o, d);
+        double e_near = SLAB_ERR * fabs(t_near) + SLAB_TINY;
+        double e_far = SLAB_ERR * fabs(t_far) + SLAB_TINY;
+        certain &= apart(t_near, t_enter, e_near + e_enter) & apart(t_far, t_exit, e_far + e_exit);
         /* Strict comparisons: on a tie the earlier axis, i.e. the lower face
-         * index, keeps its place (the tied values are equal, up to the sign
-         * of a zero, which box_hit drops). */
+         * index, keeps its place (exact ties go to the exact path). */
         int later = t_near > t_enter, earlier = t_far < t_exit;
         face_enter ^= (face_enter ^ (2 * a + backward)) & -later;
         face_exit ^= (face_exit ^ (2 * a + 1 - backward)) & -earlier;
-        t_enter = t_enter < t_near ? t_near : t_enter; /* maxsd */
-        t_exit = t_exit > t_far ? t_far : t_exit;       /* minsd */
+        t_enter = later ? t_near : t_enter;
+        e_enter = later ? e_near : e_enter;
+        t_exit = earlier ? t_far : t_exit;
+        e_exit = earlier ? e_far : e_exit;
     }
+    /* Entry against exit, and each against tmin and tmax (an infinite tmin
+     * or tmax is apart from any finite t). */
+    certain &= apart(t_enter, t_exit, e_enter + e_exit);
+    certain &= apart(t_enter, ray->tmin, e_enter) & apart(t_enter, ray->tmax, e_enter);
+    certain &= apart(t_exit, ray->tmin, e_exit) & apart(t_exit, ray->tmax, e_exit);
+    if (!certain)
+        return aabb_exact(bound, ray, out);
 
     if (t_enter > t_exit)
         return 0;
-    /* t = +-inf means the crossing lies beyond the double range (a subnormal
-     * dir component): it is not a point of the ray and is not reported. */
-    if (t_enter == t_exit) {
-        if (!isfinite(t_enter))
-            return 0;
-        int low = face_enter < face_exit ? face_enter : face_exit;
-        box_hit(&out[0], ray, bound, t_enter, low, face_enter + face_exit - low, ISECT_TOUCH);
-        return 1;
-    }
     int count = 0;
-    if (isfinite(t_enter)) {
+    if (t_enter >= ray->tmin && t_enter <= ray->tmax) {
         box_hit(&out[count], ray, bound, t_enter, face_enter, face_enter, ISECT_ENTER);
         count++;
     }
-    if (isfinite(t_exit)) {
+    if (t_exit >= ray->tmin && t_exit <= ray->tmax) {
         box_hit(&out[count], ray, bound, t_exit, face_exit, face_exit, ISECT_EXIT);
         count++;
     }
