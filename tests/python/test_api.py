@@ -278,9 +278,13 @@ def test_options() -> None:
     assert tri.intersect_all([0, 0, -1], down, cull_back=True) == []
     assert tri.intersect_all([0, 0, 1], up, cull_back=True)[0].kind == isect.HitKind.ENTER
     assert tri.intersect([0, 0, -1], down, cull_back=True)["kind"] == isect.HitKind.MISS
+    # eps reaches C: a plane 1e-9 off parallel is crossed at eps 0 and
+    # parallel (not hit) at eps 1e-6; faces use no eps (revision 2)
     grazing = [1.0, 0.0, 1e-9]
-    assert len(tri.intersect_all([-5, 0, -5e-9], grazing, eps=0.0)) == 1
-    assert tri.intersect_all([-5, 0, -5e-9], grazing, eps=1e-6) == []
+    plane = isect.Plane([0, 0, 1], 0.0)
+    assert len(plane.intersect_all([-5, 0, -5e-9], grazing, eps=0.0)) == 1
+    assert plane.intersect_all([-5, 0, -5e-9], grazing, eps=1e-6) == []
+    assert len(tri.intersect_all([-5, 0, -5e-9], grazing, eps=1e-6)) == 1
     rec = SPHERE.intersect([0, 0, -5], [0, 0, 1], any_hit=True)
     assert rec["kind"] in (isect.HitKind.ENTER, isect.HitKind.EXIT)
 
