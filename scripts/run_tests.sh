@@ -45,6 +45,15 @@ step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
 done
+# Batch records bit-identical to the scalar call at every SIMD level the
+# CPU has (test_lanes), 10^6 rays per shape, and the same records from the
+# portable build without intrinsics (equal digests).
+step "lanes test build without SIMD" make --no-print-directory -s B=$B/nosimd \
+    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_lanes
+step "test_lanes 10^6 rays per shape" sh -c \
+    "$B/tests/test_lanes 1000000 >$B/lanes.out 2>&1; rc=\$?; cat $B/lanes.out; exit \$rc"
+step "test_lanes [no SIMD]: the same digest" sh -c \
+    "a=\$(grep digest $B/lanes.out); b=\$($B/nosimd/tests/test_lanes 1000000 | grep digest); echo \"SIMD \$a, portable \$b\"; [ -n \"\$a\" ] && [ \"\$a\" = \"\$b\" ]"
 # The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
 step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
     OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once

@@ -7,6 +7,7 @@
 #define ISECT_LANES_BATCH_H
 
 #include "api/lanes.h"
+#include "prim/box_lanes.h"
 #include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
 
@@ -32,6 +33,11 @@ static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_r
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     plane_lanes_first((const plane_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE void LANES_FN(kernel_box)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    box_lanes_first((const box_prep *)prep, r, h);
 }
 
 /* Rays are taken LANES_CHUNK at a time through two passes: the screen over
@@ -257,6 +263,15 @@ static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s
     return LANES_FN(loop)(NULL, LANES_FN(kernel_plane), &pp, f, s, rays, n, prm, closest);
 }
 
+static int64_t LANES_FN(batch_box)(const shape_family *f, const isect_shape *s,
+                                   const isect_ray *rays, int64_t n, const isect_params *prm,
+                                   isect_hit *closest)
+{
+    box_prep bp;
+    box_prepare(s->data, &bp);
+    return LANES_FN(loop)(NULL, LANES_FN(kernel_box), &bp, f, s, rays, n, prm, closest);
+}
+
 lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
 {
     switch (type) {
@@ -264,6 +279,8 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
         return LANES_FN(batch_plane);
     case ISECT_SPHERE:
         return LANES_FN(batch_sphere);
+    case ISECT_AABB:
+        return LANES_FN(batch_box);
     default:
         return NULL;
     }
