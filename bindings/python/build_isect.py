@@ -101,12 +101,60 @@ def cdef_from_header(header: str) -> str:
 #: one libisect call so that a large batch runs in C with the GIL released
 #: (cffi releases it around every call). Thin over the C API: no geometry.
 EXTENSION_CDEF = """
+int64_t pyisect_closest_soa(const isect_shape *shape, const double *org, int64_t org_step,
+                            const double *dir, int64_t dir_step, const double *tmin,
+                            int64_t tmin_step, const double *tmax, int64_t tmax_step, int64_t n,
+                            const isect_opts *opts, isect_hit *out, int64_t *bad);
 int pyisect_spawn_batch(const isect_shape *shape, const isect_hit *hits, int64_t hit_step,
                         const double *dirs, int64_t dir_step, int64_t n, isect_ray *out,
                         int64_t *bad);
 """
 
 EXTENSION_SOURCE = r"""
+/* isect_intersect_batch over rays given as separate arrays: ray i is
+ * org[i * org_step .. + 3], dir[i * dir_step .. + 3], tmin[i * tmin_step],
+ * tmax[i * tmax_step] (a step of 0 repeats one value). The rays are packed
+ * PYISECT_CHUNK at a time on the stack, so the batch never materialises an
+ * n-ray array (at 10^6 rays, packing one took as long as the kernel).
+ * Returns the number of rays hit or the batch's negative status; *bad is
+ * the index of the first INVALID record (-1: none). */
+#define PYISECT_CHUNK 256
+static int64_t pyisect_closest_soa(const isect_shape *shape, const double *org, int64_t org_step,
+                                   const double *dir, int64_t dir_step, const double *tmin,
+                                   int64_t tmin_step, const double *tmax, int64_t tmax_step,
+                                   int64_t n, const isect_opts *opts, isect_hit *out, int64_t *bad)
+{
+    isect_ray buf[PYISECT_CHUNK];
+    int64_t hits = 0;
+    *bad = -1;
+    for (int64_t base = 0; base < n; base += PYISECT_CHUNK) {
+        int64_t m = n - base < PYISECT_CHUNK ? n - base : PYISECT_CHUNK;
+        for (int64_t j = 0; j < m; j++) {
+            int64_t i = base + j;
+            const double *o = org + i * org_step, *d = dir + i * dir_step;
+            buf[j].org[0] = o[0];
+            buf[j].org[1] = o[1];
+            buf[j].org[2] = o[2];
+            buf[j].dir[0] = d[0];
+            buf[j].dir[1] = d[1];
+            buf[j].dir[2] = d[2];
+            buf[j].tmin = tmin[i * tmin_step];
+            buf[j].tmax = tmax[i * tmax_step];
+        }
+        int64_t found = isect_intersect_batch(shape, buf, m, opts, out + base);
+        if (found < 0)
+            return found;
+        hits += found;
+        if (*bad < 0)
+            for (int64_t j = 0; j < m; j++)
+                if (out[base + j].kind == ISECT_INVALID) {
+                    *bad = base + j;
+                    break;
+                }
+    }
+    return hits;
+}
+
 /* isect_spawn_ray for i = 0 .. n-1 on hits[i * hit_step] and dirs[i * dir_step ..
  * + 3] (a step of 0 repeats one hit or one direction), into out[i]. Stops at
  * the first error: returns its status and sets *bad to its index (-1 when all

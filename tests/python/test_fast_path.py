@@ -12,6 +12,8 @@ general path alone.
 
 from __future__ import annotations
 
+import contextlib
+
 import threading
 import warnings
 from collections.abc import Callable
@@ -70,7 +72,16 @@ def no_general_path() -> Any:
     def refuse(*args: object) -> None:
         raise AssertionError("the general path was taken")
 
-    return mock.patch.object(_shape, "make_rays", refuse)
+    patches = (mock.patch.object(_shape, "make_rays", refuse),
+               mock.patch.object(_shape, "_soa_columns", refuse))
+    return _both(*patches)
+
+
+@contextlib.contextmanager
+def _both(first: Any, second: Any) -> Any:
+    """Two patches as one context."""
+    with first, second:
+        yield
 
 
 #: What a call returned or raised, and the warnings it gave (see outcome()).

@@ -26,6 +26,7 @@ from . import _batch
 from ._args import (
     ArrayLike,
     Vector3,
+    as_float_array,
     as_matrix4,
     as_points,
     as_ray_array,
@@ -141,6 +142,34 @@ def _closest_one(c: Any, origin: object, direction: object, tmin: object, tmax: 
         return None
     return np.ndarray((), HIT_DTYPE, out)[()]
 
+
+
+def _soa_columns(origins: ArrayLike, directions: ArrayLike, tmin: ArrayLike,
+                 tmax: ArrayLike) -> tuple[Any, ...] | None:
+    """The arguments of ``intersect`` as contiguous float64 columns with
+    steps (0: one value for every ray) and the batch shape, when each is
+    either one value or exactly the batch's shape; None otherwise (general
+    broadcasting goes through ``make_rays``)."""
+    org = as_points(origins, 3, "origins")
+    dirs = as_points(directions, 3, "directions")
+    lo = as_float_array(tmin, "tmin")
+    hi = as_float_array(tmax, "tmax")
+    try:
+        shape = np.broadcast_shapes(org.shape[:-1], dirs.shape[:-1], lo.shape, hi.shape)
+    except ValueError:
+        return None  # make_rays raises the error
+    if shape == ():
+        return None
+    cols = []
+    for a, point_shape, k in ((org, org.shape[:-1], 3), (dirs, dirs.shape[:-1], 3),
+                              (lo, lo.shape, 1), (hi, hi.shape, 1)):
+        if point_shape == ():
+            cols.append((np.ascontiguousarray(a, dtype=np.float64).reshape(-1), 0))
+        elif point_shape == shape:
+            cols.append((np.ascontiguousarray(a, dtype=np.float64).reshape(-1), k))
+        else:
+            return None
+    return (*cols, shape)
 
 class Shape:
     """Base class of every shape: the queries shared by all primitives.
@@ -301,8 +330,12 @@ class Shape:
             record = _closest_one(self._c, origins, directions, tmin, tmax)
             if record is not None:
                 return record
-        rays, shape = make_rays(origins, directions, tmin, tmax)
-        hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
+        soa = _soa_columns(origins, directions, tmin, tmax)
+        if soa is not None:
+            hits, shape = self._closest_soa(soa, eps, cull_back, any_hit, threads, errors)
+        else:
+            rays, shape = make_rays(origins, directions, tmin, tmax)
+            hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
         return hits.reshape(shape)[()] if shape == () else hits.reshape(shape)
 
     def intersect_rays(
@@ -567,6 +600,51 @@ class Shape:
             if bad.any():
                 self._raise_bad_ray(rp, int(bad.argmax()), opts, name)
         return hits
+
+    def _closest_soa(
+        self,
+        soa: tuple[Any, ...],
+        eps: float | None,
+        cull_back: bool,
+        any_hit: bool,
+        threads: int | None,
+        errors: str,
+    ) -> tuple[npt.NDArray[np.void], tuple[int, ...]]:
+        """``intersect`` over separate columns (``_soa_columns``), packed in C."""
+        name = f"{type(self).__name__}.intersect"
+        raising = raise_on_bad(errors)
+        nthreads = as_threads(threads)
+        opts = make_opts(eps, cull_back, any_hit)
+        (org, org_step), (dirs, dir_step), (lo, lo_step), (hi, hi_step), shape = soa
+        n = math.prod(shape)
+        hits = np.empty(n, dtype=HIT_DTYPE)
+        op, dp = ffi.from_buffer("double[]", org), ffi.from_buffer("double[]", dirs)
+        lp, hp_ = ffi.from_buffer("double[]", lo), ffi.from_buffer("double[]", hi)
+        out = ffi.from_buffer("isect_hit[]", hits)
+        c = self._c
+
+        def work(a: int, b: int) -> tuple[int, int]:
+            """One chunk [a, b): the C loop; its status and first bad ray."""
+            bad = ffi.new("int64_t *")
+            status = lib.pyisect_closest_soa(
+                c, op + a * org_step, org_step, dp + a * dir_step, dir_step, lp + a * lo_step,
+                lo_step, hp_ + a * hi_step, hi_step, b - a, opts, out + a, bad)
+            return int(status), (a + int(bad[0]) if bad[0] >= 0 else -1)
+
+        results = _batch.run(work, n, nthreads)
+        for status, _ in results:
+            check(status, name)
+        if raising:
+            first = [b for _, b in results if b >= 0]
+            if first:
+                index = first[0]
+                one, _ = make_rays(org[index * org_step:index * org_step + 3],
+                                   dirs[index * dir_step:index * dir_step + 3],
+                                   lo[index * lo_step], hi[index * hi_step])
+                status = lib.isect_intersect(c, ffi.from_buffer("isect_ray[]", one), opts,
+                                             ffi.NULL, 0)
+                raise_bad_element(status, name, index, "ray")
+        return hits, shape
 
     def _raise_bad_ray(self, rp: Any, index: int, opts: Any, name: str) -> None:
         """Raise the error the scalar call reports for the batch's bad ray."""
