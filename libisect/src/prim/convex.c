@@ -49,10 +49,8 @@
  * [0.5, 1); returns e. A zero vector stays zero (e = 0). */
 static int scale_to_unit_exponent(double out[3], const double v[3])
 {
-    int e;
-    (void)frexp(fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))), &e);
-    for (int k = 0; k < 3; k++)
-        out[k] = ldexp(v[k], -e);
+    int e = pow2_exponent(max_abs3(v));
+    scale3(out, v, e);
     return e;
 }
 
@@ -60,17 +58,16 @@ static int scale_to_unit_exponent(double out[3], const double v[3])
 static void load_plane(const double *planes, int i, double n[3], double *d)
 {
     const double *pl = planes + 4 * (int64_t)i;
-    *d = ldexp(pl[3], -scale_to_unit_exponent(n, pl));
+    *d = pow2_scale(pl[3], -scale_to_unit_exponent(n, pl));
 }
 
-/* n_i/|n_i| from the scaled normal (no overflow at any scale); nonzero. */
+/* n_i/|n_i| from the scaled normal (no overflow at any scale), unit to u;
+ * nonzero. */
 static void unit_normal(const double *planes, int i, double normal[3])
 {
     double n[3], d;
     load_plane(planes, i, n, &d);
-    double len = sqrt(v3_dot(n, n));
-    for (int k = 0; k < 3; k++)
-        normal[k] = n[k] / len;
+    unit3_accurate(normal, n);
 }
 
 int convex_check(const isect_shape *s)
@@ -88,7 +85,26 @@ typedef struct convex_line {
     double eps;
 } convex_line;
 
-/* num_i and den_i certified. */
+/* num_i and den_i in plain doubles with bounds on their errors (a dot
+ * product of three terms plus one: at most 4u sum |terms|, taken as 5u for
+ * the bound's own roundings), and the parallel test on them. */
+typedef struct plane_fast {
+    double num, num_err, den, den_err;
+} plane_fast;
+
+static void plane_fast_make(const convex_line *cl, int i, plane_fast *pf)
+{
+    double n[3], d;
+    load_plane(cl->planes, i, n, &d);
+    double p0 = n[0] * cl->org[0], p1 = n[1] * cl->org[1], p2 = n[2] * cl->org[2];
+    double q0 = n[0] * cl->dir[0], q1 = n[1] * cl->dir[1], q2 = n[2] * cl->dir[2];
+    pf->num = -(((p0 + p1) + p2) + d);
+    pf->num_err = 5.0 * DDX_U * (((fabs(p0) + fabs(p1)) + fabs(p2)) + fabs(d)) + DDX_TINY;
+    pf->den = (q0 + q1) + q2;
+    pf->den_err = 5.0 * DDX_U * ((fabs(q0) + fabs(q1)) + fabs(q2)) + DDX_TINY;
+}
+
+/* num_i and den_i certified as double-doubles. */
 static void plane_dd(const convex_line *cl, int i, ddx *num, ddx *den)
 {
     double n[3], d;
@@ -129,34 +145,23 @@ static void plane_exact(const convex_line *cl, int i, xp *num, xp *den, xp *nn, 
 }
 
 /* The parallel test |den| <= eps |n| |dir| (den^2 against eps^2 |n|^2
- * |dir|^2), certified or exact. */
-static int plane_parallel(const convex_line *cl, int i, ddx den)
+ * |dir|^2): certified from the plain values (|n|^2 |dir|^2 rounded within
+ * 6u), else exact. */
+static int plane_parallel(const convex_line *cl, int i, const plane_fast *pf)
 {
     double n[3], d;
     load_plane(cl->planes, i, n, &d);
-    ddx nn = ddx_of(0.0), dd = ddx_of(0.0);
-    for (int k = 0; k < 3; k++) {
-        nn = ddx_add(nn, ddx_sqr(ddx_of(n[k])));
-        dd = ddx_add(dd, ddx_sqr(ddx_of(cl->dir[k])));
-    }
-    int c = ddx_cmp_certain(ddx_sqr(den), ddx_mul(ddx_mul(nn, dd), ddx_sqr(ddx_of(cl->eps))));
-    if (c != 2)
-        return c <= 0;
+    double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    double dd = cl->dir[0] * cl->dir[0] + cl->dir[1] * cl->dir[1] + cl->dir[2] * cl->dir[2];
+    double thr = cl->eps * cl->eps * nn * dd;
+    double lo = fabs(pf->den) - pf->den_err, hi = fabs(pf->den) + pf->den_err;
+    if (lo > 0.0 && lo * lo * (1.0 - 4.0 * DDX_U) > thr * (1.0 + 12.0 * DDX_U))
+        return 0;
+    if (hi * hi * (1.0 + 4.0 * DDX_U) < thr * (1.0 - 12.0 * DDX_U))
+        return 1;
     xp num_x, den_x, nn_x, dd_x;
     plane_exact(cl, i, &num_x, &den_x, &nn_x, &dd_x);
     return parallel_exact(&den_x, &nn_x, &dd_x, cl->eps);
-}
-
-/* The sign of a certified value, exactly: ddx, else num_i (den = 0) or
- * den_i (den = 1) of plane i as an expansion. */
-static int plane_sign(const convex_line *cl, int i, ddx v, int which)
-{
-    int c = ddx_cmp_certain(v, ddx_of(0.0));
-    if (c != 2)
-        return c;
-    xp num, den, nn, dd;
-    plane_exact(cl, i, &num, &den, &nn, &dd);
-    return xp_sign(which ? &den : &num);
 }
 
 /* One crossing: plane index and certified t. */
@@ -190,18 +195,23 @@ static int cross_cmp_tau(const convex_line *cl, const convex_cross *a, double ta
     return ratio_cmp_tau(&num, &den, tau);
 }
 
-/* The hit at crossing a when it lies in [tmin, tmax] (scaled units). */
+/* The hit at crossing a when it lies in [tmin, tmax] (scaled units): its t
+ * recomputed as a certified double-double first (the selection ran on
+ * plain values), exactly where that is not within an ulp. */
 static int cross_emit(const convex_line *cl, const convex_cross *a, int e_dir,
                       const isect_ray *ray, int32_t kind, isect_hit *out)
 {
+    ddx num, den;
+    plane_dd(cl, a->plane, &num, &den);
+    convex_cross c = { a->plane, ddx_div(num, den) };
     double tmin = pow2_scale(ray->tmin, e_dir), tmax = pow2_scale(ray->tmax, e_dir);
-    if (cross_cmp_tau(cl, a, tmin) < 0 || cross_cmp_tau(cl, a, tmax) > 0)
+    if (cross_cmp_tau(cl, &c, tmin) < 0 || cross_cmp_tau(cl, &c, tmax) > 0)
         return 0;
-    double t_hi = a->t.hi, t_lo = a->t.lo;
-    if (!(a->t.err <= 0x1p-53 * fabs(t_hi))) {
-        xp num, den, nn, dd;
-        plane_exact(cl, a->plane, &num, &den, &nn, &dd);
-        ratio_value(&num, &den, &t_hi, &t_lo);
+    double t_hi = c.t.hi, t_lo = c.t.lo;
+    if (!(c.t.err <= 0x1p-53 * fabs(t_hi))) {
+        xp num_x, den_x, nn, dd;
+        plane_exact(cl, a->plane, &num_x, &den_x, &nn, &dd);
+        ratio_value(&num_x, &den_x, &t_hi, &t_lo);
     }
     t_hi = pow2_scale(t_hi, -e_dir) + 0.0; /* + 0.0: report t = 0 as +0.0 */
     t_lo = pow2_scale(t_lo, -e_dir);
@@ -213,6 +223,17 @@ static int cross_emit(const convex_line *cl, const convex_cross *a, int e_dir,
     return 1;
 }
 
+/* The sign of a plain value with its bound, exactly: num_i (which = 0) or
+ * den_i (which = 1) as an expansion where the bound straddles 0. */
+static int plane_sign(const convex_line *cl, int i, double v, double err, int which)
+{
+    if (fabs(v) > err)
+        return v > 0.0 ? 1 : -1;
+    xp num, den, nn, dd;
+    plane_exact(cl, i, &num, &den, &nn, &dd);
+    return xp_sign(which ? &den : &num);
+}
+
 int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                 isect_hit out[ISECT_MAX_HITS])
 {
@@ -220,17 +241,26 @@ int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
     int e_dir = scale_to_unit_exponent(cl.dir, ray->dir);
     convex_cross enter = { -1, { -INFINITY, 0.0, 0.0 } }, leave = { -1, { INFINITY, 0.0, 0.0 } };
     for (int i = 0; i < s->n; i++) {
-        ddx num, den;
-        plane_dd(&cl, i, &num, &den);
-        if (!(isfinite(num.hi) && isfinite(den.hi)))
+        plane_fast pf;
+        plane_fast_make(&cl, i, &pf);
+        if (!(isfinite(pf.num) && isfinite(pf.den)))
             return 0; /* geometry beyond the double range */
-        if (plane_parallel(&cl, i, den)) {
-            if (plane_sign(&cl, i, num, 0) < 0)
+        if (plane_parallel(&cl, i, &pf)) {
+            if (plane_sign(&cl, i, pf.num, pf.num_err, 0) < 0)
                 return 0; /* origin outside a parallel face */
             continue;
         }
-        convex_cross c = { i, ddx_div(num, den) };
-        if (plane_sign(&cl, i, den, 1) < 0) {
+        /* t = num/den plain: |t - exact| <= (e_num + |t| e_den)/(|den| -
+         * e_den) + the division's u|t| (infinite where den is within its
+         * bound of 0: the comparisons then go exact) */
+        double t = pf.num / pf.den;
+        double margin = fabs(pf.den) - pf.den_err;
+        double t_err = margin > 0.0
+                     ? ((pf.num_err + fabs(t) * pf.den_err) / margin + DDX_U * fabs(t))
+                           * (1.0 + 8.0 * DDX_U) + DDX_TINY
+                     : INFINITY;
+        convex_cross c = { i, { t, 0.0, t_err } };
+        if (plane_sign(&cl, i, pf.den, pf.den_err, 1) < 0) {
             if (enter.plane < 0 || cross_cmp(&cl, &c, &enter) > 0)
                 enter = c;
         } else if (leave.plane < 0 || cross_cmp(&cl, &c, &leave) < 0) {
@@ -256,9 +286,9 @@ int convex_contains(const isect_shape *s, const double p[3])
 {
     convex_line cl = { s->data, p, { 0.0, 0.0, 0.0 }, 0.0 };
     for (int i = 0; i < s->n; i++) {
-        ddx num, den;
-        plane_dd(&cl, i, &num, &den);
-        if (plane_sign(&cl, i, num, 0) < 0) /* n.p + d > 0 */
+        plane_fast pf;
+        plane_fast_make(&cl, i, &pf);
+        if (plane_sign(&cl, i, pf.num, pf.num_err, 0) < 0) /* n.p + d > 0 */
             return 0;
     }
     return 1;
