@@ -82,6 +82,7 @@ typedef struct test_shape {
     double      numbers[16];
     isect_xform xform;
     double      center[3], size;
+    double      planes[32]; /* a convex polyhedron's */
 } test_shape;
 
 static void shape_plane(test_shape *ts, const char *name, double nx, double ny, double nz,
@@ -132,6 +133,30 @@ static void shape_box(test_shape *ts, const char *name, const double lo[3], cons
     }
 }
 
+/* The octahedron |x - c|_1 <= r as 8 planes (normals (+-1, +-1, +-1)
+ * times `scale`, so that they are not unit). */
+static void shape_octahedron(test_shape *ts, const char *name, const double c[3], double r,
+                             double scale)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->shape.type = ISECT_CONVEX;
+    ts->shape.n = 8;
+    ts->shape.data = ts->planes;
+    for (int i = 0; i < 8; i++) {
+        double *pl = ts->planes + 4 * i;
+        double dot = 0.0;
+        for (int k = 0; k < 3; k++) {
+            pl[k] = (i >> k & 1 ? -1.0 : 1.0) * scale;
+            dot += pl[k] * c[k];
+        }
+        pl[3] = -dot - r * scale;
+    }
+    for (int k = 0; k < 3; k++)
+        ts->center[k] = c[k];
+    ts->size = r;
+}
+
 /* A point near the surface of ts (object space == world space for the
  * untransformed shapes). */
 static void surface_point(const test_shape *ts, double p[3])
@@ -160,6 +185,18 @@ static void surface_point(const test_shape *ts, double p[3])
             int a = (int)((pick >> (8 + 2 * j)) % 3);
             p[a] = (pick >> (16 + j)) & 1u ? hi[a] : lo[a];
         }
+        break;
+    }
+    case ISECT_CONVEX: { /* on the octahedron: a face, an edge (1 in 4), a vertex (1 in 8) */
+        uint64_t pick = rng_next();
+        double a[3] = { fabs(d[0]), fabs(d[1]), fabs(d[2]) };
+        if (pick % 8 == 0)
+            a[0] = a[1] = 0.0, a[2] = 1.0;
+        else if (pick % 4 == 0)
+            a[pick >> 8 & 1] = 0.0;
+        double l1 = a[0] + a[1] + a[2];
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->center[k] + ts->size * (d[k] < 0.0 ? -a[k] : a[k]) / l1;
         break;
     }
     default:
@@ -349,7 +386,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 20000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 11 };
+    enum { SHAPES = 14 };
     test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -379,6 +416,15 @@ int main(int argc, char **argv)
     for (int i = 0; i < 3; i++)
         shapes[10].center[i] = m[4 * i + 3];
     shapes[10].size = 2.0;
+    static const double origin[3] = { 0.0, 0.0, 0.0 }, far_c[3] = { 3e6, -1e7, 2e5 };
+    shape_octahedron(&shapes[11], "octahedron", origin, 1.0, 1.0);
+    shape_octahedron(&shapes[12], "small far octahedron", far_c, 1e-3, 3.0);
+    shape_octahedron(&shapes[13], "transformed octahedron", origin, 0.5, 0.25);
+    CHECK(isect_xform_init(&shapes[13].xform, m) == ISECT_OK);
+    shapes[13].shape.xform = &shapes[13].xform;
+    for (int i = 0; i < 3; i++)
+        shapes[13].center[i] = m[4 * i + 3];
+    shapes[13].size = 1.5;
     for (int i = 0; i < SHAPES; i++)
         test_shape_rays(&shapes[i], n);
     printf("digest %016llx\n", (unsigned long long)digest);

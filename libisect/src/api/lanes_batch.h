@@ -8,6 +8,7 @@
 
 #include "api/lanes.h"
 #include "prim/box_lanes.h"
+#include "prim/convex_lanes.h"
 #include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
 
@@ -38,6 +39,11 @@ static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ra
 static ALWAYS_INLINE void LANES_FN(kernel_box)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     box_lanes_first((const box_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE void LANES_FN(kernel_convex)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    convex_lanes_first((const convex_prep *)prep, r, h);
 }
 
 /* Rays are taken LANES_CHUNK at a time through two passes: the screen over
@@ -272,6 +278,15 @@ static int64_t LANES_FN(batch_box)(const shape_family *f, const isect_shape *s,
     return LANES_FN(loop)(NULL, LANES_FN(kernel_box), &bp, f, s, rays, n, prm, closest);
 }
 
+static int64_t LANES_FN(batch_convex)(const shape_family *f, const isect_shape *s,
+                                      const isect_ray *rays, int64_t n, const isect_params *prm,
+                                      isect_hit *closest)
+{
+    convex_prep cp;
+    convex_prepare(s->data, s->n, prm->eps, &cp);
+    return LANES_FN(loop)(NULL, LANES_FN(kernel_convex), &cp, f, s, rays, n, prm, closest);
+}
+
 lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
 {
     switch (type) {
@@ -281,6 +296,8 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
         return LANES_FN(batch_sphere);
     case ISECT_AABB:
         return LANES_FN(batch_box);
+    case ISECT_CONVEX:
+        return LANES_FN(batch_convex);
     default:
         return NULL;
     }

@@ -39,6 +39,7 @@
  * beyond the double range is not reported.
  */
 #include "prim/prim.h"
+#include "prim/convex_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/ratio.h"
@@ -234,8 +235,10 @@ static int plane_sign(const convex_line *cl, int i, double v, double err, int wh
     return xp_sign(which ? &den : &num);
 }
 
-int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                isect_hit out[ISECT_MAX_HITS])
+/* The exact path (certified where it can, exact where not), for the rays
+ * the kernel defers. */
+static int convex_hits_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                             isect_hit out[ISECT_MAX_HITS])
 {
     convex_line cl = { s->data, ray->org, { 0.0, 0.0, 0.0 }, prm->eps };
     int e_dir = scale_to_unit_exponent(cl.dir, ray->dir);
@@ -279,6 +282,38 @@ int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
         count += cross_emit(&cl, &enter, e_dir, ray, ISECT_ENTER, &out[count]);
     if (leave.plane >= 0)
         count += cross_emit(&cl, &leave, e_dir, ray, ISECT_EXIT, &out[count]);
+    return count;
+}
+
+int convex_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                isect_hit out[ISECT_MAX_HITS])
+{
+    /* the batch's kernel on this one ray (convex_lanes.h), so that the
+     * first record is the batch's bit for bit */
+    convex_prep cp;
+    convex_prepare(s->data, s->n, prm->eps, &cp);
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    convex_lanes sel;
+    convex_lanes_solve(&cp, &lr, &sel);
+    if (!sel.certain || !lane_ray_in_range(&lr, 0x1p200))
+        return convex_hits_exact(s, ray, prm, out);
+    if (sel.miss)
+        return 0;
+    lane_hit rec[2];
+    vm in[2], outside[2];
+    int present[2] = { sel.face_enter >= 0.0, sel.face_exit >= 0.0 };
+    convex_lanes_record(sel.n_enter, sel.face_enter, (double)ISECT_ENTER, &lr, &rec[0], &in[0],
+                        &outside[0]);
+    convex_lanes_record(sel.n_exit, sel.face_exit, (double)ISECT_EXIT, &lr, &rec[1], &in[1],
+                        &outside[1]);
+    for (int k = 0; k < 2; k++)
+        if (present[k] && !in[k] && !outside[k])
+            return convex_hits_exact(s, ray, prm, out);
+    int count = 0;
+    for (int k = 0; k < 2; k++)
+        if (present[k] && in[k])
+            lane_hit_store(&rec[k], 0, &out[count++]);
     return count;
 }
 
