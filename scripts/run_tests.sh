@@ -54,6 +54,10 @@ step "test_lanes 10^6 rays per shape" sh -c \
     "$B/tests/test_lanes 1000000 >$B/lanes.out 2>&1; rc=\$?; cat $B/lanes.out; exit \$rc"
 step "test_lanes [no SIMD]: the same digest" sh -c \
     "a=\$(grep digest $B/lanes.out); b=\$($B/nosimd/tests/test_lanes 1000000 | grep digest); echo \"SIMD \$a, portable \$b\"; [ -n \"\$a\" ] && [ \"\$a\" = \"\$b\" ]"
+# Secondary rays: 10^6 spawned rays per shape (reflected, refracted-like and
+# random directions) never re-hit the surface they leave, never skip a close
+# second surface.
+step "test_spawn 10^6 rays per shape" $B/tests/test_spawn 1000000
 # The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
 step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
     OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once
