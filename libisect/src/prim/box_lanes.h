@@ -29,7 +29,7 @@
 #ifndef ISECT_BOX_LANES_H
 #define ISECT_BOX_LANES_H
 
-#include "prim/prim_lanes.h"
+#include "prim/slab_lanes.h"
 
 #define BOX_LANES_ERR  0x1.4p-52 /* 2.5u */
 #define BOX_LANES_TINY 0x1p-1070
@@ -56,18 +56,12 @@ typedef struct box_lanes {
     vm certain;               /* every comparison above is certified */
 } box_lanes;
 
-/* |t - tau| > err: false for NaN, and for an infinite t (err infinite). */
-static ALWAYS_INLINE vm box_apart(vd t, vd tau, vd err)
-{
-    return vd_gt(vd_abs(vd_sub(t, tau)), err);
-}
-
 static ALWAYS_INLINE void box_lanes_solve(const box_prep *bp, const lane_ray *r, box_lanes *out)
 {
     const vd err_k = vd_set1(BOX_LANES_ERR), tiny = vd_set1(BOX_LANES_TINY);
-    vd t_enter = vd_set1(-INFINITY), t_exit = vd_set1(INFINITY);
-    vd e_enter = vd_zero(), e_exit = vd_zero();
-    vd f_enter = vd_set1(-1.0), f_exit = vd_set1(-1.0);
+    lane_slab_end enter, leave;
+    lane_slab_end_init(&enter, -INFINITY);
+    lane_slab_end_init(&leave, INFINITY);
     vm certain = vm_true(), outside = vm_false();
     for (int a = 0; a < 3; a++) {
         vd o = r->org[a], d = r->dir[a];
@@ -81,32 +75,17 @@ static ALWAYS_INLINE void box_lanes_solve(const box_prep *bp, const lane_ray *r,
         vd t_far = vd_div(vd_sub(vd_sel(backward, lo, hi), o), d_safe);
         vd e_near = vd_add(vd_mul(err_k, vd_abs(t_near)), tiny);
         vd e_far = vd_add(vd_mul(err_k, vd_abs(t_far)), tiny);
-        vm checked = vm_and(box_apart(t_near, t_enter, vd_add(e_near, e_enter)),
-                            box_apart(t_far, t_exit, vd_add(e_far, e_exit)));
-        certain = vm_and(certain, vm_or(zero, checked));
-        vm later = vm_andnot(vd_gt(t_near, t_enter), zero);
-        vm earlier = vm_andnot(vd_lt(t_far, t_exit), zero);
         vd near_face = vd_sel(backward, vd_set1(2.0 * a + 1.0), vd_set1(2.0 * a));
         vd far_face = vd_sel(backward, vd_set1(2.0 * a), vd_set1(2.0 * a + 1.0));
-        t_enter = vd_sel(later, t_near, t_enter);
-        e_enter = vd_sel(later, e_near, e_enter);
-        f_enter = vd_sel(later, near_face, f_enter);
-        t_exit = vd_sel(earlier, t_far, t_exit);
-        e_exit = vd_sel(earlier, e_far, e_exit);
-        f_exit = vd_sel(earlier, far_face, f_exit);
+        (void)lane_slab_take(&enter, vm_not(zero), t_near, e_near, near_face, 1, &certain);
+        (void)lane_slab_take(&leave, vm_not(zero), t_far, e_far, far_face, 0, &certain);
     }
-    /* entry against exit, each against tmin and tmax (an infinite tmin or
-     * tmax is apart from any finite t) */
-    certain = vm_and(certain, box_apart(t_enter, t_exit, vd_add(e_enter, e_exit)));
-    certain = vm_and(certain, vm_and(box_apart(t_enter, r->tmin, e_enter),
-                                     box_apart(t_enter, r->tmax, e_enter)));
-    certain = vm_and(certain, vm_and(box_apart(t_exit, r->tmin, e_exit),
-                                     box_apart(t_exit, r->tmax, e_exit)));
-    out->t_enter = t_enter;
-    out->t_exit = t_exit;
-    out->face_enter = f_enter;
-    out->face_exit = f_exit;
-    out->miss = vm_or(outside, vd_gt(t_enter, t_exit));
+    certain = vm_and(certain, lane_slab_ends_apart(&enter, &leave, r));
+    out->t_enter = enter.t;
+    out->t_exit = leave.t;
+    out->face_enter = enter.face;
+    out->face_exit = leave.face;
+    out->miss = vm_or(outside, vd_gt(enter.t, leave.t));
     out->certain = vm_or(outside, certain);
 }
 

@@ -29,6 +29,7 @@
 #define ISECT_CONVEX_LANES_H
 
 #include "prim/plane_lanes.h"
+#include "prim/slab_lanes.h"
 #include "core/scaling.h"
 
 #define CONVEX_LANES_U    0x1p-53
@@ -65,21 +66,15 @@ typedef struct convex_lanes {
     vm certain;               /* every decision above certified */
 } convex_lanes;
 
-/* |t - tau| > err (false for NaN and for infinite bounds). */
-static ALWAYS_INLINE vm convex_apart(vd t, vd tau, vd err)
-{
-    return vd_gt(vd_abs(vd_sub(t, tau)), err);
-}
-
 static ALWAYS_INLINE void convex_lanes_solve(const convex_prep *cp, const lane_ray *r,
                                              convex_lanes *out)
 {
     const vd u5 = vd_set1(5.0 * CONVEX_LANES_U), tiny = vd_set1(CONVEX_LANES_TINY);
     const vd *o = r->org, *dir = r->dir;
     vd dd = vd_add(vd_add(vd_mul(dir[0], dir[0]), vd_mul(dir[1], dir[1])), vd_mul(dir[2], dir[2]));
-    vd t_enter = vd_set1(-INFINITY), t_exit = vd_set1(INFINITY);
-    vd e_enter = vd_zero(), e_exit = vd_zero();
-    vd f_enter = vd_set1(-1.0), f_exit = vd_set1(-1.0);
+    lane_slab_end enter, leave;
+    lane_slab_end_init(&enter, -INFINITY);
+    lane_slab_end_init(&leave, INFINITY);
     for (int k = 0; k < 4; k++)
         out->n_enter[k] = out->n_exit[k] = vd_zero();
     vm certain = vm_true(), outside = vm_false();
@@ -118,19 +113,9 @@ static ALWAYS_INLINE void convex_lanes_solve(const convex_prep *cp, const lane_r
                           tiny);
         vm entering = vm_and(crossing, vd_lt(den, vd_zero()));
         vm leaving = vm_andnot(crossing, entering);
-        certain = vm_and(certain, vm_or(vm_not(entering),
-                                        convex_apart(t, t_enter, vd_add(t_err, e_enter))));
-        certain = vm_and(certain, vm_or(vm_not(leaving),
-                                        convex_apart(t, t_exit, vd_add(t_err, e_exit))));
-        vm later = vm_and(entering, vd_gt(t, t_enter));
-        vm earlier = vm_and(leaving, vd_lt(t, t_exit));
         vd face = vd_set1((double)i);
-        t_enter = vd_sel(later, t, t_enter);
-        e_enter = vd_sel(later, t_err, e_enter);
-        f_enter = vd_sel(later, face, f_enter);
-        t_exit = vd_sel(earlier, t, t_exit);
-        e_exit = vd_sel(earlier, t_err, e_exit);
-        f_exit = vd_sel(earlier, face, f_exit);
+        vm later = lane_slab_take(&enter, entering, t, t_err, face, 1, &certain);
+        vm earlier = lane_slab_take(&leave, leaving, t, t_err, face, 0, &certain);
         const vd nv[4] = { n0, n1, n2, d };
         for (int k = 0; k < 4; k++) {
             out->n_enter[k] = vd_sel(later, nv[k], out->n_enter[k]);
@@ -138,12 +123,12 @@ static ALWAYS_INLINE void convex_lanes_solve(const convex_prep *cp, const lane_r
         }
     }
     /* entry against exit (an absent one is infinite, apart from the other) */
-    certain = vm_and(certain, convex_apart(t_enter, t_exit, vd_add(e_enter, e_exit)));
-    out->t_enter = t_enter;
-    out->t_exit = t_exit;
-    out->face_enter = f_enter;
-    out->face_exit = f_exit;
-    out->miss = vm_or(outside, vd_gt(t_enter, t_exit));
+    certain = vm_and(certain, lane_apart(enter.t, leave.t, vd_add(enter.err, leave.err)));
+    out->t_enter = enter.t;
+    out->t_exit = leave.t;
+    out->face_enter = enter.face;
+    out->face_exit = leave.face;
+    out->miss = vm_or(outside, vd_gt(enter.t, leave.t));
     out->certain = vm_or(outside, certain);
 }
 

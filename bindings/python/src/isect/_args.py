@@ -123,14 +123,12 @@ def make_opts(eps: Any, cull_back: bool, any_hit: bool) -> Any:
     return ffi.new("isect_opts *", (_OPTS_SIZE, flags, value))
 
 
-def make_rays(
+def ray_columns(
     origins: ArrayLike, directions: ArrayLike, tmin: ArrayLike, tmax: ArrayLike
-) -> tuple[np.ndarray, tuple[int, ...]]:
-    """Broadcast origins (..., 3), directions (..., 3), tmin and tmax (...) into
-    one contiguous ``RAY_DTYPE`` array.
-
-    Returns the flat (n,) ray array and the broadcast batch shape.
-    """
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Origins (..., 3), directions (..., 3), tmin and tmax (...) as float64
+    arrays, and the batch shape they broadcast to (InvalidArgumentError if
+    they do not)."""
     org = as_points(origins, 3, "origins")
     dirs = as_points(directions, 3, "directions")
     lo = as_float_array(tmin, "tmin")
@@ -142,6 +140,18 @@ def make_rays(
             f"cannot broadcast origins {org.shape}, directions {dirs.shape}, "
             f"tmin {lo.shape} and tmax {hi.shape} together"
         ) from None
+    return org, dirs, lo, hi, shape
+
+
+def make_rays(
+    origins: ArrayLike, directions: ArrayLike, tmin: ArrayLike, tmax: ArrayLike
+) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Broadcast origins (..., 3), directions (..., 3), tmin and tmax (...) into
+    one contiguous ``RAY_DTYPE`` array.
+
+    Returns the flat (n,) ray array and the broadcast batch shape.
+    """
+    org, dirs, lo, hi, shape = ray_columns(origins, directions, tmin, tmax)
     rays = np.empty(shape, dtype=RAY_DTYPE)
     rays["org"] = org
     rays["dir"] = dirs

@@ -26,13 +26,13 @@ from . import _batch
 from ._args import (
     ArrayLike,
     Vector3,
-    as_float_array,
     as_matrix4,
     as_points,
     as_ray_array,
     as_threads,
     make_opts,
     make_rays,
+    ray_columns,
     raise_on_bad,
 )
 from ._errors import IsectError, check, error_for, invalid
@@ -150,14 +150,7 @@ def _soa_columns(origins: ArrayLike, directions: ArrayLike, tmin: ArrayLike,
     steps (0: one value for every ray) and the batch shape, when each is
     either one value or exactly the batch's shape; None otherwise (general
     broadcasting goes through ``make_rays``)."""
-    org = as_points(origins, 3, "origins")
-    dirs = as_points(directions, 3, "directions")
-    lo = as_float_array(tmin, "tmin")
-    hi = as_float_array(tmax, "tmax")
-    try:
-        shape = np.broadcast_shapes(org.shape[:-1], dirs.shape[:-1], lo.shape, hi.shape)
-    except ValueError:
-        return None  # make_rays raises the error
+    org, dirs, lo, hi, shape = ray_columns(origins, directions, tmin, tmax)
     if shape == ():
         return None
     cols = []
