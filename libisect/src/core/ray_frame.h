@@ -19,18 +19,11 @@
 typedef struct ray_frame {
     int    kx, ky, kz; /* permutation: kz = dominant axis of dir */
     double sx, sy, sz; /* shear dir[kx]/dir[kz], dir[ky]/dir[kz]; scale 1/dir[kz] */
-    double org[3];
-    double dir_len;    /* |dir|, for the epsilon policy's parallel test */
+    double org[3], dir[3]; /* the ray's, for the exact signs (frame_signs.h) */
 } ray_frame;
 
 /* The frame of a valid ray (finite, dir != 0). */
 void ray_frame_shear(const isect_ray *ray, ray_frame *f);
-
-/* The same frame without |dir|: dir_len is left -1.0 ("not computed"), for
- * a caller that tests one face and needs |dir| only for a near-parallel
- * face (triangle_hit_framed computes it then, bit for bit as
- * ray_frame_shear would: v3_norm(dir)). */
-void ray_frame_shear_no_len(const isect_ray *ray, ray_frame *f);
 
 /* q = (x, y) of p in the frame and q[2] = (p - org)[kz] / dir[kz]. */
 static inline void ray_frame_project(const ray_frame *f, const double p[3], double q[3])

@@ -90,6 +90,8 @@
 #include "prim/planar.h"
 #include "core/predicates.h"
 #include "core/ray_frame.h"
+#include "core/ratio.h"
+#include "core/scaling.h"
 #include "prim/triangle_test.h"
 #include "core/vec3.h"
 
@@ -380,7 +382,7 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
  * test) or, near zero, underflow below the floor. */
 static void query_leaf_init(query *q)
 {
-    ray_frame_shear_no_len(q->ray, &q->frame);
+    ray_frame_shear(q->ray, &q->frame);
     q->frame_ready = 1;
     q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * q->d * q->d;
     if (!(q->edge_bound > EDGE_BOUND_FLOOR))
@@ -420,20 +422,67 @@ static ALWAYS_INLINE int triangle_candidate(const query *q, const double *v, dou
     return !(z_min - slack > t_hi || z_max + slack < t_lo);
 }
 
-/* (a.t, a.prim) before (b.t, b.prim). */
-static inline int hit_before(const isect_hit *a, const isect_hit *b)
+/* The largest |coordinate| of face f's vertices. */
+static double face_extent(const isect_mesh *m, int32_t f)
 {
-    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+    const int32_t *c = m->idx + mesh_face_start(m, f);
+    int size = mesh_face_size(m, f);
+    double e = 0.0;
+    for (int i = 0; i < size; i++)
+        e = fmax_nan(e, max_abs3(mesh_vertex(m, c[i])));
+    return e;
 }
 
-/* The max-heap of the best cap hits (by (t, prim)), at hits[0..n). */
-static void heap_sift_down(isect_hit *h, int64_t n, int64_t i)
+/* The exact crossing of face f's plane (the plane its test takes t from)
+ * with the line of ray, in the scaled units of planar.h's *_crossing_xp. */
+static void face_crossing_xp(const isect_mesh *m, const isect_ray *ray, int32_t f, int e,
+                             int e_dir, xp *num, xp *den)
+{
+    const int32_t *c = m->idx + mesh_face_start(m, f);
+    int size = mesh_face_size(m, f);
+    if (size == 3)
+        triangle_crossing_xp(ray, mesh_vertex(m, c[0]), mesh_vertex(m, c[1]),
+                             mesh_vertex(m, c[2]), e, e_dir, num, den);
+    else
+        polygon_crossing_xp(ray, m->verts, c, size, e, e_dir, num, den);
+}
+
+/*
+ * (a.t, a.prim) before (b.t, b.prim), where a t rounded alike is told apart
+ * by the exact crossing parameters of the two faces (SPEC, accuracy
+ * contract: the closest hit is the exactly closest one; a ray grazing a
+ * silhouette edge enters one face and leaves the next within a fraction
+ * of an ulp), and exactly equal ones by the face index. Both records are
+ * hits, so neither face is parallel to the ray (den != 0); one scaling for
+ * both faces lets core/ratio.c compare them exactly. Rounded ties are
+ * rare, so the exact comparison costs nothing on the whole.
+ */
+static int hit_before(const query *q, const isect_hit *a, const isect_hit *b)
+{
+    if (a->t != b->t)
+        return a->t < b->t;
+    if (a->prim == b->prim)
+        return 0;
+    const isect_mesh *m = q->mesh;
+    const isect_ray *ray = q->ray;
+    double ext = fmax_nan(max_abs3(ray->org),
+                          fmax_nan(face_extent(m, a->prim), face_extent(m, b->prim)));
+    int e = pow2_exponent(ext), e_dir = pow2_exponent(max_abs3(ray->dir));
+    xp na, da, nb, db;
+    face_crossing_xp(m, ray, a->prim, e, e_dir, &na, &da);
+    face_crossing_xp(m, ray, b->prim, e, e_dir, &nb, &db);
+    int c = ratio_cmp(&na, &da, &nb, &db);
+    return c != 0 ? c < 0 : a->prim < b->prim;
+}
+
+/* The max-heap of the best cap hits (by hit_before), at hits[0..n). */
+static void heap_sift_down(const query *q, isect_hit *h, int64_t n, int64_t i)
 {
     for (;;) {
         int64_t l = 2 * i + 1, r = l + 1, top = i;
-        if (l < n && hit_before(&h[top], &h[l]))
+        if (l < n && hit_before(q, &h[top], &h[l]))
             top = l;
-        if (r < n && hit_before(&h[top], &h[r]))
+        if (r < n && hit_before(q, &h[top], &h[r]))
             top = r;
         if (top == i)
             return;
@@ -444,13 +493,13 @@ static void heap_sift_down(isect_hit *h, int64_t n, int64_t i)
     }
 }
 
-static void heap_push(isect_hit *h, int64_t n, const isect_hit *x)
+static void heap_push(const query *q, isect_hit *h, int64_t n, const isect_hit *x)
 {
     int64_t i = n;
     h[i] = *x;
     while (i > 0) {
         int64_t parent = (i - 1) / 2;
-        if (!hit_before(&h[parent], &h[i]))
+        if (!hit_before(q, &h[parent], &h[i]))
             return;
         isect_hit tmp = h[i];
         h[i] = h[parent];
@@ -460,13 +509,13 @@ static void heap_push(isect_hit *h, int64_t n, const isect_hit *x)
 }
 
 /* In place ascending order of a max-heap of n hits. */
-static void heap_sort(isect_hit *h, int64_t n)
+static void heap_sort(const query *q, isect_hit *h, int64_t n)
 {
     for (int64_t end = n - 1; end > 0; end--) {
         isect_hit tmp = h[0];
         h[0] = h[end];
         h[end] = tmp;
-        heap_sift_down(h, end, 0);
+        heap_sift_down(q, h, end, 0);
     }
 }
 
@@ -476,7 +525,7 @@ static int query_take(query *q, int mode, const isect_hit *h)
 {
     switch (mode) {
     case QUERY_CLOSEST:
-        if (!q->found || hit_before(h, &q->best)) {
+        if (!q->found || hit_before(q, h, &q->best)) {
             q->best = *h;
             q->found = 1;
             q->t_limit = h->t;
@@ -486,10 +535,10 @@ static int query_take(query *q, int mode, const isect_hit *h)
     case QUERY_ALL: {
         int64_t kept = q->count < q->cap ? q->count : q->cap;
         if (q->count < q->cap) {
-            heap_push(q->hits, kept, h);
-        } else if (q->cap > 0 && hit_before(h, &q->hits[0])) {
+            heap_push(q, q->hits, kept, h);
+        } else if (q->cap > 0 && hit_before(q, h, &q->hits[0])) {
             q->hits[0] = *h;
-            heap_sift_down(q->hits, kept, 0);
+            heap_sift_down(q, q->hits, kept, 0);
         }
         q->count++;
         return 0;
@@ -520,7 +569,7 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
              * not in the BVH), so the exact collinearity test is skipped. */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
-            hit = triangle_hit(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, p->n, 1, &h);
+            hit = triangle_hit(&q->frame, ray, p->v, p->v + 3, p->v + 6, p->n, &h);
         } else {
             hit = polygon_hit_plane_framed(&q->frame, ray, m->verts,
                                            m->idx + mesh_face_start(m, p->face), p->nverts,
@@ -905,7 +954,7 @@ int64_t mesh_hits_all(const isect_shape *s, const isect_ray *ray,
     q.hits = hits;
     q.cap = cap;
     query_run(&q, QUERY_ALL, cpu_has_avx2_fma());
-    heap_sort(hits, q.count < cap ? q.count : cap);
+    heap_sort(&q, hits, q.count < cap ? q.count : cap);
     return q.count;
 }
 
