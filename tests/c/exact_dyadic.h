@@ -23,6 +23,12 @@
 
 #define EX_LIMBS 128
 
+#if defined(__GNUC__) || defined(__clang__)
+#define EX_UNUSED __attribute__((unused))
+#else
+#define EX_UNUSED
+#endif
+
 typedef struct exq {
     int      neg;   /* 1 when negative (never for zero) */
     int      exp;   /* value = (-1)^neg * mag * 2^exp */
@@ -30,13 +36,13 @@ typedef struct exq {
     uint32_t mag[EX_LIMBS];
 } exq;
 
-static void ex_overflow(void)
+static EX_UNUSED void ex_overflow(void)
 {
     fprintf(stderr, "exact_dyadic: out of room\n");
     abort();
 }
 
-static void ex_trim(exq *x)
+static EX_UNUSED void ex_trim(exq *x)
 {
     while (x->n > 0 && x->mag[x->n - 1] == 0)
         x->n--;
@@ -44,7 +50,7 @@ static void ex_trim(exq *x)
         x->neg = 0;
 }
 
-static exq ex_of(double v)
+static EX_UNUSED exq ex_of(double v)
 {
     exq x;
     memset(&x, 0, sizeof x);
@@ -63,7 +69,7 @@ static exq ex_of(double v)
 }
 
 /* mag << s bits (s >= 0), in place. */
-static void ex_shl(exq *x, int s)
+static EX_UNUSED void ex_shl(exq *x, int s)
 {
     if (x->n == 0 || s == 0)
         return;
@@ -85,7 +91,7 @@ static void ex_shl(exq *x, int s)
 }
 
 /* Compare magnitudes of two values with the same exponent. */
-static int ex_cmp_mag(const exq *a, const exq *b)
+static EX_UNUSED int ex_cmp_mag(const exq *a, const exq *b)
 {
     if (a->n != b->n)
         return a->n < b->n ? -1 : 1;
@@ -95,7 +101,7 @@ static int ex_cmp_mag(const exq *a, const exq *b)
     return 0;
 }
 
-static exq ex_add(exq a, exq b)
+static EX_UNUSED exq ex_add(exq a, exq b)
 {
     if (a.n == 0)
         return b;
@@ -141,19 +147,19 @@ static exq ex_add(exq a, exq b)
     return r;
 }
 
-static exq ex_neg(exq a)
+static EX_UNUSED exq ex_neg(exq a)
 {
     if (a.n > 0)
         a.neg = !a.neg;
     return a;
 }
 
-static exq ex_sub(exq a, exq b)
+static EX_UNUSED exq ex_sub(exq a, exq b)
 {
     return ex_add(a, ex_neg(b));
 }
 
-static exq ex_mul(const exq a, const exq b)
+static EX_UNUSED exq ex_mul(const exq a, const exq b)
 {
     exq r;
     memset(&r, 0, sizeof r);
@@ -177,7 +183,7 @@ static exq ex_mul(const exq a, const exq b)
     return r;
 }
 
-static int ex_sign(const exq a)
+static EX_UNUSED int ex_sign(const exq a)
 {
     return a.n == 0 ? 0 : a.neg ? -1 : 1;
 }
@@ -185,13 +191,13 @@ static int ex_sign(const exq a)
 /* ---------------------------------------------------- geometry helpers */
 
 /* v = p - q, exactly. */
-static void ex_diff3(const double p[3], const double q[3], exq v[3])
+static EX_UNUSED void ex_diff3(const double p[3], const double q[3], exq v[3])
 {
     for (int k = 0; k < 3; k++)
         v[k] = ex_sub(ex_of(p[k]), ex_of(q[k]));
 }
 
-static void ex_cross(const exq a[3], const exq b[3], exq out[3])
+static EX_UNUSED void ex_cross(const exq a[3], const exq b[3], exq out[3])
 {
     for (int i = 0; i < 3; i++) {
         int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -199,26 +205,26 @@ static void ex_cross(const exq a[3], const exq b[3], exq out[3])
     }
 }
 
-static exq ex_dot(const exq a[3], const exq b[3])
+static EX_UNUSED exq ex_dot(const exq a[3], const exq b[3])
 {
     return ex_add(ex_add(ex_mul(a[0], b[0]), ex_mul(a[1], b[1])), ex_mul(a[2], b[2]));
 }
 
-static void ex_of3(const double v[3], exq out[3])
+static EX_UNUSED void ex_of3(const double v[3], exq out[3])
 {
     for (int k = 0; k < 3; k++)
         out[k] = ex_of(v[k]);
 }
 
 /* sign(n1/d1 - n2/d2) for nonzero d1, d2. */
-static int ex_ratio_cmp(exq n1, exq d1, exq n2, exq d2)
+static EX_UNUSED int ex_ratio_cmp(exq n1, exq d1, exq n2, exq d2)
 {
     return ex_sign(ex_sub(ex_mul(n1, d2), ex_mul(n2, d1))) * ex_sign(d1) * ex_sign(d2);
 }
 
 /* The crossing of the line o + t d with the plane of triangle a, b, c:
  * t = num/den, num = N.(a - o), den = N.d, N = (b - a) x (c - a). */
-static void ex_triangle_crossing(const double o[3], const double d[3], const double a[3],
+static EX_UNUSED void ex_triangle_crossing(const double o[3], const double d[3], const double a[3],
                                  const double b[3], const double c[3], exq *num, exq *den)
 {
     exq e1[3], e2[3], n[3], ao[3], dd[3];
@@ -234,7 +240,7 @@ static void ex_triangle_crossing(const double o[3], const double d[3], const dou
 /* The crossing of the line o + t d with a polygon's plane (the Newell
  * normal N = sum_i v_i x v_{i+1} through the vertex centroid S/n, as
  * isect.h defines it): t = N.(S - n o) / (n N.d). v: n x 3, or with idx. */
-static void ex_polygon_crossing(const double o[3], const double d[3], const double *v,
+static EX_UNUSED void ex_polygon_crossing(const double o[3], const double d[3], const double *v,
                                 const int32_t *idx, int n, exq *num, exq *den)
 {
     exq N[3], S[3], c[3], a[3], b[3], dd[3], on[3];
