@@ -41,10 +41,23 @@ done
 # The portable code that SSE replaces on x86-64 (BVH build and node test),
 # built with ISECT_NO_SIMD and held to the same mesh tests.
 step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
-    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once
+    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once \
+    $B/nosimd/tests/test_lanes
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
 done
+# The batch records of the portable build (-DISECT_NO_SIMD: the lane
+# kernels one ray at a time) must be bit for bit those of this build at
+# every SIMD level: test_lanes prints one digest of all its records.
+lanes_digest() {
+    "$1" 200000 | grep '^digest'
+}
+same_lanes_digest() {
+    a=$(lanes_digest $B/tests/test_lanes) && b=$(lanes_digest $B/nosimd/tests/test_lanes) \
+        && echo "this build: $a; no SIMD: $b" && [ "$a" = "$b" ]
+}
+[ -x $B/nosimd/tests/test_lanes ] && step "batch records equal without SIMD (test_lanes digest)" \
+    same_lanes_digest
 # The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
 step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
     OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once
