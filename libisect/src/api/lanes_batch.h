@@ -36,6 +36,10 @@ static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ra
     plane_lanes_first((const plane_prep *)prep, r, h);
 }
 
+static ALWAYS_INLINE vm LANES_FN(screen_triangle)(const void *prep, const lane_ray *r)
+{
+    return tri_lanes_screen((const tri_prep *)prep, r);
+}
 static ALWAYS_INLINE void LANES_FN(kernel_triangle)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     tri_lanes_first((const tri_prep *)prep, r, h);
@@ -280,7 +284,8 @@ static int64_t LANES_FN(batch_triangle)(const shape_family *f, const isect_shape
 {
     tri_prep tp;
     triangle_prepare(s->data, &tp);
-    return LANES_FN(loop)(NULL, LANES_FN(kernel_triangle), &tp, f, s, rays, n, prm, closest);
+    return LANES_FN(loop)(LANES_FN(screen_triangle), LANES_FN(kernel_triangle), &tp, f, s, rays, n,
+                          prm, closest);
 }
 
 static int64_t LANES_FN(batch_polygon)(const shape_family *f, const isect_shape *s,

@@ -174,6 +174,11 @@ typedef struct query {
     const mesh_prim    *prims;
     const isect_ray    *ray;
     const isect_params *prm;
+    lane_ray  lane;        /* the ray as one lane, and whether it and the
+                              faces lie in face_lanes.h's fast range: 1 all
+                              faces, -1 to be checked per face (a vertex
+                              beyond it), 0 none (made with the frame) */
+    int       fast_range;
     ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
                               misses every box never pays for it */
     int       frame_ready;
@@ -384,6 +389,10 @@ static void query_leaf_init(query *q)
 {
     ray_frame_shear(q->ray, &q->frame);
     q->frame_ready = 1;
+    lane_ray_from(&q->lane, q->ray);
+    q->fast_range = !lane_ray_in_range(&q->lane, 0x1p200) ? 0
+                  : q->mesh->coord_bound <= 0x1p200     ? 1
+                                                        : -1;
     q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * q->d * q->d;
     if (!(q->edge_bound > EDGE_BOUND_FLOOR))
         q->edge_bound = isnan(q->edge_bound) ? INFINITY : EDGE_BOUND_FLOOR;
@@ -569,7 +578,9 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
              * not in the BVH), so the exact collinearity test is skipped. */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
-            hit = triangle_hit(&q->frame, ray, p->v, p->v + 3, p->v + 6, p->n, &h);
+            int fast = q->fast_range >= 0 ? q->fast_range
+                                          : triangle_fast_range(&q->lane, p->v, p->v + 3, p->v + 6);
+            hit = triangle_hit(&q->frame, ray, &q->lane, fast, p->v, p->v + 3, p->v + 6, p->n, &h);
         } else {
             hit = polygon_hit_plane_framed(&q->frame, ray, m->verts,
                                            m->idx + mesh_face_start(m, p->face), p->nverts,

@@ -236,7 +236,9 @@ int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     }
     ray_frame f;
     ray_frame_shear(ray, &f);
-    return triangle_hit(&f, ray, s->data, s->data + 3, s->data + 6, tp.normal, &out[0]);
+    const double *a = s->data, *b = s->data + 3, *c = s->data + 6;
+    return triangle_hit(&f, ray, &lr, triangle_fast_range(&lr, a, b, c), a, b, c, tp.normal,
+                        &out[0]);
 }
 
 /* In front of the right-hand normal of a, b, c: orient3_sign is +1 below. */

@@ -155,6 +155,31 @@ typedef struct tri_prep {
 
 void triangle_prepare(const double *data, tri_prep *tp);
 
+static ALWAYS_INLINE void tri_prep_vertices(const tri_prep *tp, vd a[3], vd b[3], vd c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        a[k] = vd_set1(tp->v[k]);
+        b[k] = vd_set1(tp->v[3 + k]);
+        c[k] = vd_set1(tp->v[6 + k]);
+    }
+}
+
+/* The batch's screen: the lanes not certainly outside the triangle (the
+ * certified signs alone; a lane it clears is one tri_lanes_first would
+ * report as no hit without deferring). Crossings are solved for the
+ * rest only. */
+static ALWAYS_INLINE vm tri_lanes_screen(const tri_prep *tp, const lane_ray *ray)
+{
+    if (tp->degenerate)
+        return vm_false();
+    vd a[3], b[3], c[3];
+    tri_prep_vertices(tp, a, b, c);
+    tri_signs ts;
+    tri_signs_make(a, b, c, ray, &ts);
+    vm ok = tp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
+    return vm_not(vm_and(ok, ts.out));
+}
+
 /*
  * The first (only) hit of LANE_W rays. A lane is found when the certified
  * signs put the frame origin inside and the crossing is certified in
@@ -166,11 +191,7 @@ void triangle_prepare(const double *data, tri_prep *tp);
 static ALWAYS_INLINE void tri_lanes_first(const tri_prep *tp, const lane_ray *ray, lane_hit *h)
 {
     vd a[3], b[3], c[3];
-    for (int k = 0; k < 3; k++) {
-        a[k] = vd_set1(tp->v[k]);
-        b[k] = vd_set1(tp->v[3 + k]);
-        c[k] = vd_set1(tp->v[6 + k]);
-    }
+    tri_prep_vertices(tp, a, b, c);
     tri_signs ts;
     tri_signs_make(a, b, c, ray, &ts);
     tri_plane pl;

@@ -79,16 +79,17 @@ static ALWAYS_INLINE int triangle_fast_range(const lane_ray *lr, const double a[
 /* The test: the exact inside test (triangle_inside) decides whether the
  * ray crosses the triangle — no epsilon (revision 2); then triangle_record
  * finds where (the crossing parameter to within 4 ulp, decided exactly
- * against [tmin, tmax]) and writes the record. normal: the face's unit
- * normal if the caller keeps it (a mesh, a batch), or NULL. */
-static ALWAYS_INLINE int triangle_hit(const ray_frame *f, const isect_ray *ray, const double a[3],
+ * against [tmin, tmax]) and writes the record. lr: the ray as one lane;
+ * fast_range: triangle_fast_range of it (a mesh knows it for all its
+ * faces at once); normal: the face's unit normal if the caller keeps it
+ * (a mesh, a batch), or NULL. */
+static ALWAYS_INLINE int triangle_hit(const ray_frame *f, const isect_ray *ray,
+                                      const lane_ray *lr, int fast_range, const double a[3],
                                       const double b[3], const double c[3],
                                       const double *normal, isect_hit *out)
 {
-    lane_ray lr;
-    lane_ray_from(&lr, ray);
     double u, v;
-    if (!triangle_inside(f, &lr, triangle_fast_range(&lr, a, b, c), a, b, c, &u, &v))
+    if (!triangle_inside(f, lr, fast_range, a, b, c, &u, &v))
         return 0;
     return triangle_record(ray, a, b, c, normal, u, v, out);
 }
