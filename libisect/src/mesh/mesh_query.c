@@ -2,8 +2,8 @@
  * mesh_query.c — ray queries against a mesh through its BVH: closest hit,
  * all hits, any hit; and point containment by exact crossing parity.
  *
- * Every face decision is made by the shared exact tests of planar.h
- * (triangle_hit_framed, polygon_hit_plane_framed) in the ray's sheared
+ * Every face decision is made by the shared exact tests (triangle_test.h's
+ * triangle_hit, planar.h's polygon_hit_plane_framed) in the ray's sheared
  * frame, computed once per ray. Everything in front of them only skips
  * faces those tests would certainly reject, so the BVH changes the speed
  * and never the answer: a query returns bit for bit what testing every
@@ -13,13 +13,13 @@
  * ----------------------------------------------------------
  * Let D = (max|o_k| + max|vertex coordinate|)(1 + 4u), u = 2^-53, f =
  * 2^-24 (float). Every vertex-minus-origin difference is at most D. The
- * exact test claims a triangle when the frame origin lies in the triangle
- * of its ROUNDED projected vertices (each within 4uD of the exact one), and
- * reports t as a mix of the vertices' sheared z by nonnegative weights
- * summing to 1 within a few ulps: org + t dir lies within a few tens of uD
- * (far below 2^-40 D) of a point of the face, hence of its box; the float
- * boxes are rounded outward and contain their faces exactly. Such a hit
- * has |t| max|dir| <= |t dir| <= D (1 + 2^-40).
+ * exact test claims a face only when the exact projection of the ray's
+ * line meets it, i.e. when the line meets the face (a triangle: its exact
+ * crossing with the plane lies in the closed triangle), and reports t
+ * within 4 ulp of that crossing: org + t dir lies within 4u|t dir| <= 4uD
+ * (1 + 2^-40) of a point of the face, hence of its box; the float boxes
+ * are rounded outward and contain their faces exactly. Such a hit has
+ * |t| max|dir| <= |t dir| <= D (1 + 2^-40).
  *
  * The test runs in float on eight children at once, in scaled time tau =
  * t 2^(ev - ed), where 2^ed <= D < 2^(ed+1) and 2^ev <= max|dir| <
@@ -62,16 +62,19 @@
  * -----------------------
  * Before the exact test each triangle gets Woop's three edge functions in
  * plain double from projections computed without fma (so that x86-64
- * without -mfma never calls libm's fma in the loop). Against the exact
- * test's inputs each projection differs by at most 5uD and has size <= 2D,
- * so an edge function is off by at most ~70uD^2 (products of the shifted
- * inputs plus three roundings); with bound B = 128uD^2 (and a floor of
- * 2^-1000, below which products may be subnormal), two edge functions
- * beyond +B and -B prove the exact test rejects. The exact test's t is a
- * convex mix of the same z values it computes (identical arithmetic here),
- * within about 10u max|z| of [min z, max z] (three weighted terms, weights
- * summing to 1 within 4u); a triangle whose whole z range is outside
- * [tmin, current t] by 16u max|z| is skipped.
+ * without -mfma never calls libm's fma in the loop). Each projection
+ * differs from the exact projection the exact test decides on (x = A[kx] -
+ * (d[kx]/d[kz]) A[kz] in real numbers, A = v - o) by at most 6.1uD: uD for
+ * each rounded difference, u|S| <= u for the rounded shear S, then the
+ * product and the subtraction, |x| <= 2D. So an edge function is off by at
+ * most 4 (6.1uD)(2D) + 3 roundings of products below 8D^2, about 65uD^2;
+ * with bound B = 128uD^2 (and a floor of 2^-1000, below which products may
+ * be subnormal), two edge functions beyond +B and -B prove the exact test
+ * rejects. The exact crossing of a claimed triangle lies in the closed
+ * triangle, so its t lies in [min z, max z] of the exact sheared z =
+ * A[kz]/d[kz]; the reported t is within 3.5u|t| of it and each computed z
+ * within 3.1u|z| of the exact one: a triangle whose whole z range is
+ * outside [tmin, current t] by 16u max|z| is skipped.
  *
  * Containment
  * -----------
@@ -380,9 +383,8 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
     slab_init(q, m->coord_bound, ray);
 }
 
-/* What the faces' tests need, made at the first leaf: the frame (without
- * |dir|: triangle_hit_framed's parallel test needs it only for a nearly
- * parallel face and then computes it itself) and the pre-filter's bound.
+/* What the faces' tests need, made at the first leaf: the frame, the ray
+ * as one lane with its fast-range verdict, and the pre-filter's bound.
  * d * d may overflow (infinite bound: every triangle goes to the exact
  * test) or, near zero, underflow below the floor. */
 static void query_leaf_init(query *q)
@@ -573,9 +575,8 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
         if (p->nverts == 3) {
             if (!triangle_candidate(q, p->v, ray->tmin, q->t_limit))
                 continue;
-            /* The plane precomputed (zero: triangle_hit_framed never hits
-             * this face); the face is not collinear (degenerate faces are
-             * not in the BVH), so the exact collinearity test is skipped. */
+            /* The plane precomputed (zero: the exact test never hits this
+             * face; degenerate faces are not in the BVH anyway). */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
             int fast = q->fast_range >= 0 ? q->fast_range

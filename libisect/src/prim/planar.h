@@ -1,15 +1,17 @@
 /*
- * planar.h — ray/face tests in a precomputed sheared frame, shared by the
- * triangle and polygon primitives and (later) the mesh BVH, so that the
- * exactly-once logic at shared edges and vertices is written once.
+ * planar.h — what triangles, polygons and mesh faces share: their planes,
+ * the crossing record, the exact crossing parameters, and the polygon test
+ * in a precomputed sheared frame (the triangle's is triangle_test.h), so
+ * that the exactly-once logic at shared edges and vertices is written once.
  *
- * Both tests report the hit of the ray's whole line (any t; the caller
- * filters [tmin, tmax] and culls), with a unit normal by the right-hand rule
- * over the vertex order, kind ENTER when dir.normal < 0 else EXIT, prim -1.
- * A face parallel to the ray by the epsilon policy (|n.d| <= eps |n| |d|)
- * or of zero area is never hit. Whether the line crosses the face is decided
- * exactly at the frame's 2D origin, perturbed by (-e^2, -e) (predicates.h),
- * so a triangle and the same triangle given as a polygon agree on every ray.
+ * Whether a ray crosses a face is decided exactly for the given doubles at
+ * the 2D origin of the ray's sheared frame, on the exact projection of the
+ * vertices, perturbed by (-e^2, -e) (isect.h, "Tie-breaking";
+ * core/frame_signs.h), with no eps (revision 2), so a triangle and the same
+ * triangle given as a polygon agree on every ray. Only crossings in [tmin,
+ * tmax] (decided exactly) are reported, with a unit normal by the
+ * right-hand rule over the vertex order, kind ENTER when dir.N < 0 exactly
+ * else EXIT, prim -1; the caller culls. A face of zero area is never hit.
  */
 #ifndef ISECT_PLANAR_H
 #define ISECT_PLANAR_H
