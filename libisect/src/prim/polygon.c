@@ -368,12 +368,23 @@ int polygon_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
                  isect_hit out[ISECT_MAX_HITS])
 {
     (void)prm; /* no epsilon for faces (revision 2) */
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (vertex_extent(s->data, NULL, s->n) <= 0x1p200 && lane_ray_in_range(&lr, 0x1p200)) {
+        /* the kernel's verdict for a certainly outside ray, before the
+         * plane is prepared (most rays of a scalar or all-hits call miss) */
+        face_axes fa;
+        face_axes_make(&lr, &fa);
+        face_winding fw;
+        face_winding_lanes(s->data, NULL, s->n, &lr, &fa, &fw);
+        int inside = s->flags == ISECT_NONZERO ? fw.winding != 0.0 : fw.odd > 0.0;
+        if (fw.certain && !inside)
+            return 0;
+    }
     poly_prep pp;
     polygon_prepare(s->data, s->n, s->flags, &pp);
     if (pp.degenerate)
         return 0;
-    lane_ray lr;
-    lane_ray_from(&lr, ray);
     lane_hit h;
     poly_lanes_first(&pp, &lr, &h);
     if (!h.slow) {

@@ -215,17 +215,23 @@ int triangle_check(const isect_shape *s)
 
 /* The fast kernel at LANE_W = 1 (the batch's, so both give the same
  * record), then for the rays it leaves undecided the exact path: the same
- * signs, each uncertain one decided exactly, and triangle_record. */
+ * signs, each uncertain one decided exactly, and triangle_record. A ray
+ * the certified signs put outside returns before the plane is prepared
+ * (most rays of a scalar or all-hits call miss). */
 int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                   isect_hit out[ISECT_MAX_HITS])
 {
     (void)prm; /* no epsilon for faces (revision 2) */
+    const double *a = s->data, *b = s->data + 3, *c = s->data + 6;
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    int fast_range = triangle_fast_range(&lr, a, b, c);
+    if (fast_range && !tri_lanes_inside_maybe(a, b, c, &lr))
+        return 0; /* the kernel's verdict too, without preparing the plane */
     tri_prep tp;
     triangle_prepare(s->data, &tp);
     if (tp.degenerate)
         return 0;
-    lane_ray lr;
-    lane_ray_from(&lr, ray);
     lane_hit h;
     tri_lanes_first(&tp, &lr, &h);
     if (!h.slow) {
@@ -236,9 +242,7 @@ int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     }
     ray_frame f;
     ray_frame_shear(ray, &f);
-    const double *a = s->data, *b = s->data + 3, *c = s->data + 6;
-    return triangle_hit(&f, ray, &lr, triangle_fast_range(&lr, a, b, c), a, b, c, tp.normal,
-                        &out[0]);
+    return triangle_hit(&f, ray, &lr, fast_range, a, b, c, tp.normal, &out[0]);
 }
 
 /* In front of the right-hand normal of a, b, c: orient3_sign is +1 below. */

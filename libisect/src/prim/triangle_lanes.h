@@ -164,6 +164,19 @@ static ALWAYS_INLINE void tri_prep_vertices(const tri_prep *tp, vd a[3], vd b[3]
     }
 }
 
+/* The lanes not certainly outside triangle a, b, c by the certified signs
+ * (the caller has checked face_lanes.h's range). */
+static ALWAYS_INLINE vm tri_lanes_inside_maybe(const double a[3], const double b[3],
+                                               const double c[3], const lane_ray *ray)
+{
+    const vd av[3] = { vd_set1(a[0]), vd_set1(a[1]), vd_set1(a[2]) };
+    const vd bv[3] = { vd_set1(b[0]), vd_set1(b[1]), vd_set1(b[2]) };
+    const vd cv[3] = { vd_set1(c[0]), vd_set1(c[1]), vd_set1(c[2]) };
+    tri_signs ts;
+    tri_signs_make(av, bv, cv, ray, &ts);
+    return vm_not(ts.out);
+}
+
 /* The batch's screen: the lanes not certainly outside the triangle (the
  * certified signs alone; a lane it clears is one tri_lanes_first would
  * report as no hit without deferring). Crossings are solved for the
