@@ -73,10 +73,10 @@ $(SAN_STLIB): $(SAN_OBJS)
 # ---------------------------------------------------------------- tests
 # Unit tests link the shared library (so they see exactly the exported ABI);
 # their sanitized twins link the sanitized static library.
-$(B)/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h $(B)/$(SONAME) $(B)/libisect.so
+$(B)/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h tests/c/exact_dyadic.h $(B)/$(SONAME) $(B)/libisect.so
 	@mkdir -p $(@D)
 	$(CC) $(TESTCFLAGS) $< -o $@ -L$(B) -lisect -Wl,-rpath,'$$ORIGIN/..' -lm
-$(B)/san/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h $(SAN_STLIB)
+$(B)/san/tests/%: tests/c/%.c tests/c/check.h tests/c/mesh_fixtures.h tests/c/exact_dyadic.h $(SAN_STLIB)
 	@mkdir -p $(@D)
 	$(CC) $(TESTCFLAGS) $(SANITIZE) $< -o $@ $(SAN_STLIB) -lm
 

@@ -41,15 +41,14 @@ done
 # The portable code that SSE replaces on x86-64 (BVH build and node test),
 # built with ISECT_NO_SIMD and held to the same mesh tests.
 step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
-    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once
+    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once \
+    $B/nosimd/tests/test_lanes
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
 done
 # Batch records bit-identical to the scalar call at every SIMD level the
 # CPU has (test_lanes), 10^6 rays per shape, and the same records from the
 # portable build without intrinsics (equal digests).
-step "lanes test build without SIMD" make --no-print-directory -s B=$B/nosimd \
-    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_lanes
 step "test_lanes 10^6 rays per shape" sh -c \
     "$B/tests/test_lanes 1000000 >$B/lanes.out 2>&1; rc=\$?; cat $B/lanes.out; exit \$rc"
 step "test_lanes [no SIMD]: the same digest" sh -c \

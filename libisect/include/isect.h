@@ -13,9 +13,10 @@
  *    first min(count, cap) of them, sorted by t (ties by prim), like snprintf.
  *    "By t" is by the exact crossing parameter: two crossings whose exact t
  *    differ but round to the same double (a ray entering through a cap and
- *    leaving through the side a few 1e-20 later) keep their exact order, so
- *    an entry always precedes its exit. cap may be 0 with hits NULL to count
- *    only.
+ *    leaving through the side a few 1e-20 later, or grazing a mesh edge
+ *    through its two faces) keep their exact order, so an entry always
+ *    precedes its exit and the closest hit is the exactly closest one. cap
+ *    may be 0 with hits NULL to count only.
  *  - A negative return value is an error status (ISECT_E_*); isect_strerror()
  *    describes it. Nothing is written to the hit buffer on error. No function
  *    aborts, prints, allocates (except mesh creation) or keeps global state;
@@ -29,10 +30,14 @@
  *
  * Epsilon policy (eps = opts->eps, default ISECT_EPS_DEFAULT = 1e-12)
  * -------------------------------------------------------------------
- *  - Plane, triangle, polygon, convex-polyhedron face with normal n:
- *    parallel to the ray when |n.d| <= eps*|n|*|d|. A parallel thin surface is
- *    not hit (a ray lying in it included). A parallel convex-polyhedron face
+ *  - Plane, convex-polyhedron face (and cylinder cap) with normal n:
+ *    parallel to the ray when |n.d| <= eps*|n|*|d|. A parallel plane is not
+ *    hit (a ray lying in it included). A parallel convex-polyhedron face
  *    constrains the ray by the side its origin is on (on the plane = inside).
+ *  - Triangles, polygons and mesh faces use no eps at all: the exact test of
+ *    "Tie-breaking" alone decides whether they are crossed; only a ray
+ *    exactly parallel to the face's plane (n.d == 0) has no crossing. So
+ *    exactly-once holds at every eps.
  *  - Quadric surfaces decide a single TOUCH hit (tangency) with a relative
  *    test documented at each function. With eps = 0 only exact tangency
  *    (a zero discriminant) touches.
@@ -44,19 +49,28 @@
  *  the +z axis through the 2D origin. The frame: kz = index of the largest
  *  |dir[k]| (the lowest index on ties), kx = (kz+1) mod 3, ky = (kz+2) mod 3,
  *  kx and ky swapped when dir[kz] < 0; a point p maps to
- *  x = (p-org)[kx] - (dir[kx]/dir[kz]) (p-org)[kz], y likewise with ky. The 2D inside test at the origin is then
- *  made exact: signs of 2x2 determinants are computed exactly (a floating-point
- *  filter with an error-free fallback), and a point on an edge or vertex is
- *  decided by a symbolic perturbation of the query point — it is moved by
- *  (-e^2, -e) for an infinitesimal e > 0, so a vertex on the horizontal test
- *  line counts as above it and a horizontal edge on the line counts for
- *  neither side (the "logically move the ray up epsilon" rule made exact).
- *  Every vertex is projected by the same arithmetic whichever face it belongs
- *  to, so adjacent faces see the same 2D points. Consequence: a ray crossing a
- *  closed, consistently oriented surface through a shared edge or vertex is
- *  counted exactly once, and one that only grazes a silhouette edge or vertex
- *  is counted an even number of times. The 2D helpers
- *  isect_point_in_polygon2() and isect_winding_number2() use the same rule.
+ *  x = (p-org)[kx] - (dir[kx]/dir[kz]) (p-org)[kz], y likewise with ky,
+ *  EXACTLY: the 2D inside test at the origin is decided on the exact
+ *  projected coordinates of the given doubles, never on rounded ones.
+ *  (Multiplied by |dir[kz]|, which keeps every sign below, x and y are the
+ *  degree-2 polynomials -((p-org) x dir)[ky] and ((p-org) x dir)[kx], and
+ *  the orientation of an edge p -> q about the origin is the sign of
+ *  dir . ((p-org) x (q-org)).) Each sign is computed in plain double with a
+ *  forward error bound and, where the bound cannot certify it, exactly
+ *  (sums of products at any exponent), so the decision is exact for every
+ *  finite input, subnormal numbers included. A ray through an edge or vertex
+ *  is decided by a symbolic perturbation of the query point, applied to the
+ *  exact coordinates — it is moved by (-e^2, -e) for an infinitesimal
+ *  e > 0, so a vertex on the horizontal test line (y == 0) counts as above
+ *  it and a horizontal edge on the line counts for neither side (the
+ *  "logically move the ray up epsilon" rule made exact): an edge with
+ *  orientation 0 takes the sign of x_p - x_q, then of y_q - y_p. Every
+ *  decision about an edge depends on its two vertices and the ray alone, so
+ *  adjacent faces agree about it. Consequence: a ray crossing a closed,
+ *  consistently oriented surface through a shared edge or vertex is counted
+ *  exactly once, and one that only grazes a silhouette edge or vertex is
+ *  counted an even number of times. The 2D helpers isect_point_in_polygon2()
+ *  and isect_winding_number2() use the same rule on their given 2D points.
  */
 #ifndef ISECT_H
 #define ISECT_H
@@ -287,9 +301,9 @@ ISECT_API int isect_ray_aabb(const isect_ray *ray, const double lo[3], const dou
                              const isect_opts *opts, isect_hit *hits, int cap);
 
 /* Triangle a, b, c. Thin surface; normal = unit((b-a) x (c-a)); prim -1;
- * uv = barycentric weights of b and c. Watertight: exact edge tests in the
- * sheared frame with the tie-breaking rule above. Parallel per the epsilon
- * policy: no hit. Zero area: degenerate. */
+ * uv = barycentric weights of b and c. Watertight: exact edge tests on the
+ * exact sheared projection with the tie-breaking rule above; no eps (a ray
+ * exactly parallel to the plane is not hit). Zero area: degenerate. */
 ISECT_API int isect_ray_triangle(const isect_ray *ray, const double a[3], const double b[3],
                                  const double c[3], const isect_opts *opts,
                                  isect_hit *hits, int cap);
@@ -298,11 +312,10 @@ ISECT_API int isect_ray_triangle(const isect_ray *ray, const double a[3], const 
  * self-intersecting; rule ISECT_EVEN_ODD or ISECT_NONZERO (else ISECT_E_ARG).
  * Plane: Newell's normal through the vertex centroid; normal = unit Newell
  * normal (right-hand rule over the vertex order); prim -1. Inside test:
- * winding number of the origin of the sheared frame, exact, with the
- * tie-breaking rule above. Degenerate (never hit): all vertices exactly
- * collinear (tested exactly), or a Newell normal with no correct digit (every
- * component within the rounding error of its own sum: a sliver whose plane
- * double precision cannot tell). */
+ * winding number of the origin of the exact sheared projection, with the
+ * tie-breaking rule above; no eps. Degenerate (never hit): an exact Newell
+ * normal of zero (all vertices collinear, or signed areas that cancel
+ * exactly); a sliver whose normal is tiny but not zero has that plane. */
 ISECT_API int isect_ray_polygon(const isect_ray *ray, const double *v, int n, int rule,
                                 const isect_opts *opts, isect_hit *hits, int cap);
 
@@ -407,10 +420,11 @@ ISECT_API int64_t isect_winding_number2_batch(const double *poly, int n, const d
  * A 3-vertex face is a triangle (barycentric uv) also when given through
  * offsets; longer faces are filled by the even-odd rule. Degenerate faces
  * are counted by the report and left out of the BVH. Exactly-once holds for
- * mesh hits as for single faces (see "Tie-breaking"); the near-parallel eps
- * test also applies to each face, so with eps > 0 a face within eps of
- * parallel to the ray is skipped even when it is the one claiming a shared
- * edge — pass eps = 0 for the unconditional guarantee. */
+ * mesh hits as for single faces (see "Tie-breaking"), at every eps (faces
+ * use none). Hits are sorted by t; two faces whose crossings round to the
+ * same t are ordered by their exact crossing parameters (exactly while
+ * the coordinates and the direction's components lie within about 2^100 of
+ * the largest of their kind; deterministically beyond), then by face. */
 ISECT_API int isect_mesh_create(const double *verts, int64_t nv, const int32_t *idx,
                                 const int64_t *offsets, int64_t nf, isect_mesh **out);
 

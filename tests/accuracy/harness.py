@@ -134,10 +134,16 @@ def measure(tally: Tally, inst: P.Instance, pairs, org: np.ndarray, d: np.ndarra
         tally.add("angle", M.angle_units(h.normal, r.normal), where)
 
 
+def _closest_wrong(tally: Tally, where: str) -> None:
+    tally.decisions["closest"] += 1
+    tally.worst.setdefault("closest", (1.0, where))
+
+
 def _closest(tally: Tally, rec: LibHit | None, ref: R.RefResult, where: str) -> None:
     kept = ref.kept
     if rec is None or not kept:
-        tally.decisions["closest"] += (rec is None) != (not kept)
+        if (rec is None) != (not kept):
+            _closest_wrong(tally, where)
         return
     nearest = min(ref.hits, key=lambda r: abs(mpmath.mpf(Fraction(rec.t)) - R.exact.mp(r.t)))
     # two crossings whose exact t round to the same double (an entry through
@@ -145,7 +151,7 @@ def _closest(tally: Tally, rec: LibHit | None, ref: R.RefResult, where: str) -> 
     # they are, not by which exact t the rounded one happens to lie nearer
     same = M.KIND_NAMES.get(rec.kind) == kept[0].kind and rec.prim == kept[0].prim
     if nearest is not kept[0] and not (same and M.t_error_ulps(rec.t, kept[0].t) <= 4):
-        tally.decisions["closest"] += 1
+        _closest_wrong(tally, where + f" closest=({rec.t!r}, prim {rec.prim}, kind {rec.kind})")
     elif kept[0].t != 0:
         tally.add("t_closest", M.t_error_ulps(rec.t, kept[0].t), where)
 

@@ -2,13 +2,15 @@
  * test_lanes.c — batch records are bit for bit the scalar call's, at every
  * instruction set the library dispatches to.
  *
- * For each analytic shape with a fast kernel, rays of several classes
- * (random at mixed scales, far and small, grazing / near tangent, origins
- * within ulps of the surface, interval ends near the crossings, bad rays)
- * go through isect_intersect_batch under every ISECT_SIMD level and are
- * compared, record by record with memcmp, with the first hit of
- * isect_intersect on the same ray (or the MISS / INVALID record isect.h
- * defines). The test also prints one digest of all the records, which the
+ * For each analytic shape with a fast kernel (spheres, planes, triangles,
+ * polygons; plain, far and small, huge, tiny, degenerate, transformed),
+ * rays of several classes (random at mixed scales, far and small, grazing
+ * / near tangent or within ulps of an edge or vertex, origins within ulps
+ * of the surface, interval ends near the crossings, bad rays) go through
+ * isect_intersect_batch under every ISECT_SIMD level and are compared,
+ * record by record with memcmp, with the first hit of isect_intersect on
+ * the same ray (or the MISS / INVALID record isect.h defines); thin
+ * surfaces once more under ISECT_CULL_BACK. The test also prints one digest of all the records, which the
  * test script compares between this build and the portable one
  * (-DISECT_NO_SIMD): same bits on every build.
  *
@@ -79,7 +81,7 @@ static double ulps(double x, int k)
 typedef struct test_shape {
     const char *name;
     isect_shape shape;
-    double      numbers[16];
+    double      numbers[48];
     isect_xform xform;
     double      center[3], size;
     double      planes[32]; /* a convex polyhedron's */
@@ -157,6 +159,45 @@ static void shape_octahedron(test_shape *ts, const char *name, const double c[3]
     ts->size = r;
 }
 
+static void shape_triangle(test_shape *ts, const char *name, const double v[9])
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    memcpy(ts->numbers, v, 9 * sizeof(double));
+    ts->shape.type = ISECT_TRIANGLE;
+    ts->shape.data = ts->numbers;
+    double size = 0.0;
+    for (int k = 0; k < 3; k++) {
+        ts->center[k] = (v[k] + v[3 + k] + v[6 + k]) / 3.0;
+        size = fmax(size, fabs(v[k] - ts->center[k]));
+        size = fmax(size, fabs(v[3 + k] - ts->center[k]));
+        size = fmax(size, fabs(v[6 + k] - ts->center[k]));
+    }
+    ts->size = size > 0.0 ? size : 1.0;
+}
+
+/* A polygon of n vertices around c in the plane spanned by u, w: a
+ * rounded regular n-gon, or a star (every other vertex at 0.4 of the
+ * radius) when concave. */
+static void shape_polygon(test_shape *ts, const char *name, int n, int concave, int rule,
+                          const double c[3], const double u[3], const double w[3], double r)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    for (int j = 0; j < n; j++) {
+        double ang = 6.283185307179586 * j / n;
+        double rad = r * (concave && j % 2 ? 0.4 : 1.0);
+        for (int k = 0; k < 3; k++)
+            ts->numbers[3 * j + k] = c[k] + rad * cos(ang) * u[k] + rad * sin(ang) * w[k];
+    }
+    ts->shape.type = ISECT_POLYGON;
+    ts->shape.n = n;
+    ts->shape.flags = rule;
+    ts->shape.data = ts->numbers;
+    memcpy(ts->center, c, sizeof ts->center);
+    ts->size = r > 0.0 ? r : 1.0;
+}
+
 /* A point near the surface of ts (object space == world space for the
  * untransformed shapes). */
 static void surface_point(const test_shape *ts, double p[3])
@@ -197,6 +238,18 @@ static void surface_point(const test_shape *ts, double p[3])
         double l1 = a[0] + a[1] + a[2];
         for (int k = 0; k < 3; k++)
             p[k] = ts->center[k] + ts->size * (d[k] < 0.0 ? -a[k] : a[k]) / l1;
+        break;
+    }
+    case ISECT_TRIANGLE:
+    case ISECT_POLYGON: { /* a vertex, a point of an edge, or one inside */
+        const double *v = ts->numbers;
+        int n = ts->shape.type == ISECT_TRIANGLE ? 3 : ts->shape.n;
+        int i = (int)(rng_next() % (uint64_t)n), j = (i + 1) % n;
+        double s = 0.5 * (rng_unit() + 1.0), in = rng_next() % 3 == 0 ? 0.5 : 0.0;
+        for (int k = 0; k < 3; k++) {
+            double e = v[3 * i + k] + s * (v[3 * j + k] - v[3 * i + k]);
+            p[k] = e + in * (ts->center[k] - e);
+        }
         break;
     }
     default:
@@ -299,10 +352,11 @@ static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
 
 /* The record isect_intersect_batch must write for ray r: the first hit of
  * the scalar call, or MISS / INVALID as isect.h defines them. */
-static void scalar_record(const isect_shape *s, const isect_ray *r, isect_hit *out)
+static void scalar_record(const isect_shape *s, const isect_ray *r, const isect_opts *o,
+                          isect_hit *out)
 {
     isect_hit h[8];
-    int n = isect_intersect(s, r, NULL, h, 8);
+    int n = isect_intersect(s, r, o, h, 8);
     if (n > 0) {
         *out = h[0];
         return;
@@ -326,7 +380,7 @@ static void digest_add(const void *p, size_t n)
 
 static const char *const levels[] = { "scalar", "sse2", "avx2", "avx512" };
 
-static void test_shape_rays(const test_shape *ts, int64_t n)
+static void test_shape_rays(const test_shape *ts, int64_t n, const isect_opts *o)
 {
     isect_ray *rays = malloc((size_t)n * sizeof *rays);
     isect_hit *want = malloc((size_t)n * sizeof *want);
@@ -338,7 +392,7 @@ static void test_shape_rays(const test_shape *ts, int64_t n)
     }
     for (int64_t i = 0; i < n; i++) {
         make_ray(ts, (enum ray_class)(i % CLASSES), &rays[i]);
-        scalar_record(&ts->shape, &rays[i], &want[i]);
+        scalar_record(&ts->shape, &rays[i], o, &want[i]);
     }
     int64_t want_hits = 0;
     for (int64_t i = 0; i < n; i++)
@@ -346,15 +400,16 @@ static void test_shape_rays(const test_shape *ts, int64_t n)
     for (int lv = 0; lv < 4; lv++) {
         setenv("ISECT_SIMD", levels[lv], 1);
         memset(got, 0xA5, (size_t)n * sizeof *got);
-        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, NULL, got);
+        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, o, got);
         CHECK_EQ_INT(hits, want_hits);
         int64_t bad = 0;
         for (int64_t i = 0; i < n; i++) {
             if (memcmp(&got[i], &want[i], sizeof got[i]) != 0) {
                 if (bad++ < 3)
-                    fprintf(stderr, "%s [%s] ray %lld (class %d): batch t=%.17g kind=%d, "
-                            "scalar t=%.17g kind=%d\n", ts->name, levels[lv], (long long)i,
-                            (int)(i % CLASSES), got[i].t, got[i].kind, want[i].t, want[i].kind);
+                    fprintf(stderr, "%s%s [%s] ray %lld (class %d): batch t=%.17g kind=%d, "
+                            "scalar t=%.17g kind=%d\n", ts->name, o ? " (culled)" : "",
+                            levels[lv], (long long)i, (int)(i % CLASSES), got[i].t, got[i].kind,
+                            want[i].t, want[i].kind);
             }
         }
         if (bad != 0)
@@ -386,8 +441,8 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 20000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 14 };
-    test_shape shapes[SHAPES];
+    enum { SHAPES = 25 };
+    static test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
     shape_sphere(&shapes[2], "huge sphere", -1e9, 2e9, 0.5, 3e8);
@@ -425,8 +480,41 @@ int main(int argc, char **argv)
     for (int i = 0; i < 3; i++)
         shapes[13].center[i] = m[4 * i + 3];
     shapes[13].size = 1.5;
-    for (int i = 0; i < SHAPES; i++)
-        test_shape_rays(&shapes[i], n);
+
+    static const double tri[9] = { -1.0, -1.0, 0.2, 1.2, -0.8, -0.1, 0.1, 1.1, 0.3 };
+    static const double far_tri[9] = { 1e7, 1e7, 5.0, 1e7 + 1e-3, 1e7, 5.0, 1e7, 1e7 + 1e-3, 5.5 };
+    static const double sliver[9] = { 0.1, 0.2, 0.3, 1.1, 1.2, 1.3, 2.1, 2.2, 2.3000000000000003 };
+    static const double collinear[9] = { 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 2.0, 2.0, 0.0 };
+    static const double huge_tri[9] = { 0x1p210, 0.0, 0.0, 0.0, 0x1p210, 0.0, 0.0, 0.0, 0x1p210 };
+    static const double tiny_tri[9] = { 1e-160, 0.0, 0.0, 0.0, 1e-160, 0.0, 0.0, 0.0, 1e-160 };
+    shape_triangle(&shapes[14], "triangle", tri);
+    shape_triangle(&shapes[15], "small far triangle", far_tri);
+    shape_triangle(&shapes[16], "sliver triangle", sliver);
+    shape_triangle(&shapes[17], "collinear triangle", collinear);
+    shape_triangle(&shapes[18], "huge triangle (beyond the fast range)", huge_tri);
+    shape_triangle(&shapes[19], "tiny triangle", tiny_tri);
+    shape_triangle(&shapes[20], "transformed triangle", tri);
+    CHECK(isect_xform_init(&shapes[20].xform, m) == ISECT_OK);
+    shapes[20].shape.xform = &shapes[20].xform;
+    for (int i = 0; i < 3; i++)
+        shapes[20].center[i] = m[4 * i + 3];
+    shapes[20].size = 3.0;
+    static const double pc[3] = { 0.1, -0.2, 0.05 }, pu[3] = { 2.0 / 3, 2.0 / 3, 1.0 / 3 },
+                        pw[3] = { -2.0 / 3, 1.0 / 3, 2.0 / 3 };
+    static const double fc[3] = { 3e6, -1e7, 2e5 };
+    shape_polygon(&shapes[21], "convex polygon", 7, 0, ISECT_EVEN_ODD, pc, pu, pw, 1.0);
+    shape_polygon(&shapes[22], "concave polygon (nonzero)", 12, 1, ISECT_NONZERO, pc, pu, pw, 1.0);
+    shape_polygon(&shapes[23], "small far polygon", 9, 1, ISECT_EVEN_ODD, fc, pu, pw, 1e-3);
+    shape_polygon(&shapes[24], "degenerate polygon", 5, 0, ISECT_EVEN_ODD, pc, pu, pu, 1.0);
+    isect_opts cull = ISECT_OPTS_INIT;
+    cull.flags = ISECT_CULL_BACK;
+    for (int i = 0; i < SHAPES; i++) {
+        test_shape_rays(&shapes[i], n, NULL);
+        int thin = shapes[i].shape.type == ISECT_PLANE || shapes[i].shape.type == ISECT_TRIANGLE
+                || shapes[i].shape.type == ISECT_POLYGON;
+        if (thin)
+            test_shape_rays(&shapes[i], n / 4, &cull);
+    }
     printf("digest %016llx\n", (unsigned long long)digest);
     return check_summary();
 }

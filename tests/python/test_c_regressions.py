@@ -66,8 +66,6 @@ def test_sliver_polygon_normal_is_the_exact_one() -> None:
     assert np.linalg.norm(got - want) < 1e-15
 
 
-@pytest.mark.xfail(strict=True, reason="inclusion is decided on the rounded sheared projection "
-                   "of the vertices; the exact geometry of this sliver is missed by the ray")
 def test_sliver_polygon_is_not_hit() -> None:
     """The ray crosses the sliver's plane outside the sliver (exact
     reference: tests/accuracy/reference.py gives no hit)."""

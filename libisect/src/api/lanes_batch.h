@@ -11,6 +11,8 @@
 #include "prim/convex_lanes.h"
 #include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
+#include "prim/triangle_lanes.h"
+#include "prim/polygon_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
 #define LANES_CAT(a, b) LANES_CAT2(a, b)
@@ -44,6 +46,20 @@ static ALWAYS_INLINE void LANES_FN(kernel_box)(const void *prep, const lane_ray 
 static ALWAYS_INLINE void LANES_FN(kernel_convex)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     convex_lanes_first((const convex_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE vm LANES_FN(screen_triangle)(const void *prep, const lane_ray *r)
+{
+    return tri_lanes_screen((const tri_prep *)prep, r);
+}
+static ALWAYS_INLINE void LANES_FN(kernel_triangle)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    tri_lanes_first((const tri_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE void LANES_FN(kernel_polygon)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    poly_lanes_first((const poly_prep *)prep, r, h);
 }
 
 /* Rays are taken LANES_CHUNK at a time through two passes: the screen over
@@ -126,15 +142,19 @@ static ALWAYS_INLINE vm LANES_FN(load_object)(const isect_shape *s, const isect_
 /* The kernel's records for lanes out[] (valid[] the lanes of good rays;
  * lanes beyond `lanes` repeat the last one), the deferred lanes through
  * shape_ray_first, bad rays INVALID; returns the hits among the first
- * `lanes`. */
+ * `lanes`. cull_exit: ISECT_CULL_BACK on a thin surface, whose EXIT hits
+ * the dispatcher drops (shape.c: analytic_hit_first), so a culled lane
+ * gets the MISS record as there. */
 static ALWAYS_INLINE int64_t LANES_FN(finish)(lane_hit *h, unsigned valid, int lanes,
                                               const shape_family *f, const isect_shape *s,
                                               const isect_ray *const world[LANE_W],
                                               isect_hit *const out[LANE_W],
-                                              const isect_params *prm)
+                                              const isect_params *prm, int cull_exit)
 {
     unsigned slow = vm_bits(h->slow) & valid;
     h->found = vm_andnot(h->found, h->slow);
+    if (cull_exit)
+        h->found = vm_andnot(h->found, vd_eq(h->kind, vd_set1((double)ISECT_EXIT)));
     if (s->xform != NULL)
         lane_hit_to_world(s->xform, h);
     LANES_FN(store)(h, out);
@@ -167,6 +187,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
 {
     int64_t hit_count = 0, base = 0;
     int64_t full = n - n % LANE_W;
+    int cull_exit = (prm->flags & ISECT_CULL_BACK) && !shape_is_solid(f, s);
     if (screen == NULL) {
         for (int64_t i = 0; i < full; i += LANE_W) {
             const isect_ray *at[LANE_W];
@@ -179,7 +200,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             unsigned valid = vm_bits(LANES_FN(load_object)(s, at, &lr));
             lane_hit h;
             kernel(prep, &lr, &h);
-            hit_count += LANES_FN(finish)(&h, valid, LANE_W, f, s, at, out, prm);
+            hit_count += LANES_FN(finish)(&h, valid, LANE_W, f, s, at, out, prm, cull_exit);
         }
         base = full;
     }
@@ -238,7 +259,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             lane_hit h;
             kernel(prep, &lr, &h);
             int lanes = cand_count - c < LANE_W ? cand_count - c : LANE_W;
-            hit_count += LANES_FN(finish)(&h, LANE_ALL, lanes, f, s, world, out, prm);
+            hit_count += LANES_FN(finish)(&h, LANE_ALL, lanes, f, s, world, out, prm, cull_exit);
         }
     }
     for (int64_t i = full; i < n; i++) {
@@ -287,9 +308,32 @@ static int64_t LANES_FN(batch_convex)(const shape_family *f, const isect_shape *
     return LANES_FN(loop)(NULL, LANES_FN(kernel_convex), &cp, f, s, rays, n, prm, closest);
 }
 
+static int64_t LANES_FN(batch_triangle)(const shape_family *f, const isect_shape *s,
+                                        const isect_ray *rays, int64_t n, const isect_params *prm,
+                                        isect_hit *closest)
+{
+    tri_prep tp;
+    triangle_prepare(s->data, &tp);
+    return LANES_FN(loop)(LANES_FN(screen_triangle), LANES_FN(kernel_triangle), &tp, f, s, rays, n,
+                          prm, closest);
+}
+
+static int64_t LANES_FN(batch_polygon)(const shape_family *f, const isect_shape *s,
+                                       const isect_ray *rays, int64_t n, const isect_params *prm,
+                                       isect_hit *closest)
+{
+    poly_prep pp;
+    polygon_prepare(s->data, s->n, s->flags, &pp);
+    return LANES_FN(loop)(NULL, LANES_FN(kernel_polygon), &pp, f, s, rays, n, prm, closest);
+}
+
 lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
 {
     switch (type) {
+    case ISECT_TRIANGLE:
+        return LANES_FN(batch_triangle);
+    case ISECT_POLYGON:
+        return LANES_FN(batch_polygon);
     case ISECT_PLANE:
         return LANES_FN(batch_plane);
     case ISECT_SPHERE:

@@ -5,7 +5,7 @@
 
 #include "core/vec3.h"
 
-void ray_frame_shear_no_len(const isect_ray *ray, ray_frame *f)
+void ray_frame_shear(const isect_ray *ray, ray_frame *f)
 {
     const double *d = ray->dir;
     /* The dominant axis keeps |sx|, |sy| <= 1; ties go to the lowest index
@@ -31,11 +31,5 @@ void ray_frame_shear_no_len(const isect_ray *ray, ray_frame *f)
     f->sy = d[ky] / d[kz];
     f->sz = 1.0 / d[kz];
     v3_copy(f->org, ray->org);
-    f->dir_len = -1.0;
-}
-
-void ray_frame_shear(const isect_ray *ray, ray_frame *f)
-{
-    ray_frame_shear_no_len(ray, f);
-    f->dir_len = v3_norm(ray->dir);
+    v3_copy(f->dir, ray->dir);
 }

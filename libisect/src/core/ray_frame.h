@@ -3,11 +3,11 @@
  * Ray/Triangle Intersection", JCGT 2013), exactly as isect.h documents it.
  *
  * In the frame the ray is the +z axis through the 2D origin and a point on
- * the ray at parameter t has z = t. Faces are tested by exact 2D predicates
- * at the origin, so two faces sharing a vertex must see bit-identical 2D
- * coordinates for it: ray_frame_project is the one place the projection is
- * written, and it uses fma so that no compiler contraction choice can make
- * two call sites round differently.
+ * the ray at parameter t has z = t. Faces are tested at the origin on the
+ * EXACT projection of their vertices (core/frame_signs.h; the fast
+ * kernels certify its signs, prim/face_lanes.h), so no two call sites can
+ * disagree about a vertex's image; the frame fixes only which axes are x,
+ * y and z (and the shear, for the mesh's conservative pre-filter).
  */
 #ifndef ISECT_RAY_FRAME_H
 #define ISECT_RAY_FRAME_H
@@ -19,28 +19,10 @@
 typedef struct ray_frame {
     int    kx, ky, kz; /* permutation: kz = dominant axis of dir */
     double sx, sy, sz; /* shear dir[kx]/dir[kz], dir[ky]/dir[kz]; scale 1/dir[kz] */
-    double org[3];
-    double dir_len;    /* |dir|, for the epsilon policy's parallel test */
+    double org[3], dir[3]; /* the ray's, for the exact signs (frame_signs.h) */
 } ray_frame;
 
 /* The frame of a valid ray (finite, dir != 0). */
 void ray_frame_shear(const isect_ray *ray, ray_frame *f);
-
-/* The same frame without |dir|: dir_len is left -1.0 ("not computed"), for
- * a caller that tests one face and needs |dir| only for a near-parallel
- * face (triangle_hit_framed computes it then, bit for bit as
- * ray_frame_shear would: v3_norm(dir)). */
-void ray_frame_shear_no_len(const isect_ray *ray, ray_frame *f);
-
-/* q = (x, y) of p in the frame and q[2] = (p - org)[kz] / dir[kz]. */
-static inline void ray_frame_project(const ray_frame *f, const double p[3], double q[3])
-{
-    double px = p[f->kx] - f->org[f->kx];
-    double py = p[f->ky] - f->org[f->ky];
-    double pz = p[f->kz] - f->org[f->kz];
-    q[0] = fma(-f->sx, pz, px);
-    q[1] = fma(-f->sy, pz, py);
-    q[2] = pz * f->sz;
-}
 
 #endif /* ISECT_RAY_FRAME_H */

@@ -12,9 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* 1 when the three points span no area, decided exactly (the same test
- * triangle_hit_framed applies, so a face left out here is one it would
- * never hit). */
+/* 1 when the three points span no area, decided exactly (such a face is
+ * never hit: its exact projection has no area, triangle_test.h). */
 static int triangle_degenerate(const double a[3], const double b[3], const double c[3])
 {
     return collinear3(a, b, c);

@@ -4,7 +4,7 @@
  * the BVH), mesh_check.c (topology report), and the queries the dispatcher
  * (api/shape.c) calls.
  *
- * Faces. A face of 3 vertices is a triangle, tested by triangle_hit_framed;
+ * Faces. A face of 3 vertices is a triangle, tested by triangle_hit;
  * a face of more is a planar polygon, tested by polygon_hit_plane_framed
  * under ISECT_EVEN_ODD with its plane precomputed once. These are the
  * library's one implementation of the exact, perturbed ray/face decision

@@ -2,8 +2,8 @@
  * mesh_query.c — ray queries against a mesh through its BVH: closest hit,
  * all hits, any hit; and point containment by exact crossing parity.
  *
- * Every face decision is made by the shared exact tests of planar.h
- * (triangle_hit_framed, polygon_hit_plane_framed) in the ray's sheared
+ * Every face decision is made by the shared exact tests (triangle_test.h's
+ * triangle_hit, planar.h's polygon_hit_plane_framed) in the ray's sheared
  * frame, computed once per ray. Everything in front of them only skips
  * faces those tests would certainly reject, so the BVH changes the speed
  * and never the answer: a query returns bit for bit what testing every
@@ -13,13 +13,13 @@
  * ----------------------------------------------------------
  * Let D = (max|o_k| + max|vertex coordinate|)(1 + 4u), u = 2^-53, f =
  * 2^-24 (float). Every vertex-minus-origin difference is at most D. The
- * exact test claims a triangle when the frame origin lies in the triangle
- * of its ROUNDED projected vertices (each within 4uD of the exact one), and
- * reports t as a mix of the vertices' sheared z by nonnegative weights
- * summing to 1 within a few ulps: org + t dir lies within a few tens of uD
- * (far below 2^-40 D) of a point of the face, hence of its box; the float
- * boxes are rounded outward and contain their faces exactly. Such a hit
- * has |t| max|dir| <= |t dir| <= D (1 + 2^-40).
+ * exact test claims a face only when the exact projection of the ray's
+ * line meets it, i.e. when the line meets the face (a triangle: its exact
+ * crossing with the plane lies in the closed triangle), and reports t
+ * within 4 ulp of that crossing: org + t dir lies within 4u|t dir| <= 4uD
+ * (1 + 2^-40) of a point of the face, hence of its box; the float boxes
+ * are rounded outward and contain their faces exactly. Such a hit has
+ * |t| max|dir| <= |t dir| <= D (1 + 2^-40).
  *
  * The test runs in float on eight children at once, in scaled time tau =
  * t 2^(ev - ed), where 2^ed <= D < 2^(ed+1) and 2^ev <= max|dir| <
@@ -62,16 +62,19 @@
  * -----------------------
  * Before the exact test each triangle gets Woop's three edge functions in
  * plain double from projections computed without fma (so that x86-64
- * without -mfma never calls libm's fma in the loop). Against the exact
- * test's inputs each projection differs by at most 5uD and has size <= 2D,
- * so an edge function is off by at most ~70uD^2 (products of the shifted
- * inputs plus three roundings); with bound B = 128uD^2 (and a floor of
- * 2^-1000, below which products may be subnormal), two edge functions
- * beyond +B and -B prove the exact test rejects. The exact test's t is a
- * convex mix of the same z values it computes (identical arithmetic here),
- * within about 10u max|z| of [min z, max z] (three weighted terms, weights
- * summing to 1 within 4u); a triangle whose whole z range is outside
- * [tmin, current t] by 16u max|z| is skipped.
+ * without -mfma never calls libm's fma in the loop). Each projection
+ * differs from the exact projection the exact test decides on (x = A[kx] -
+ * (d[kx]/d[kz]) A[kz] in real numbers, A = v - o) by at most 6.1uD: uD for
+ * each rounded difference, u|S| <= u for the rounded shear S, then the
+ * product and the subtraction, |x| <= 2D. So an edge function is off by at
+ * most 4 (6.1uD)(2D) + 3 roundings of products below 8D^2, about 65uD^2;
+ * with bound B = 128uD^2 (and a floor of 2^-1000, below which products may
+ * be subnormal), two edge functions beyond +B and -B prove the exact test
+ * rejects. The exact crossing of a claimed triangle lies in the closed
+ * triangle, so its t lies in [min z, max z] of the exact sheared z =
+ * A[kz]/d[kz]; the reported t is within 3.5u|t| of it and each computed z
+ * within 3.1u|z| of the exact one: a triangle whose whole z range is
+ * outside [tmin, current t] by 16u max|z| is skipped.
  *
  * Containment
  * -----------
@@ -90,6 +93,8 @@
 #include "prim/planar.h"
 #include "core/predicates.h"
 #include "core/ray_frame.h"
+#include "core/ratio.h"
+#include "core/scaling.h"
 #include "prim/triangle_test.h"
 #include "core/vec3.h"
 
@@ -172,6 +177,11 @@ typedef struct query {
     const mesh_prim    *prims;
     const isect_ray    *ray;
     const isect_params *prm;
+    lane_ray  lane;        /* the ray as one lane, and whether it and the
+                              faces lie in face_lanes.h's fast range: 1 all
+                              faces, -1 to be checked per face (a vertex
+                              beyond it), 0 none (made with the frame) */
+    int       fast_range;
     ray_frame frame;       /* made at the first leaf (frame_ready): a ray that
                               misses every box never pays for it */
     int       frame_ready;
@@ -373,15 +383,18 @@ static void query_init(query *q, const isect_mesh *m, const isect_ray *ray,
     slab_init(q, m->coord_bound, ray);
 }
 
-/* What the faces' tests need, made at the first leaf: the frame (without
- * |dir|: triangle_hit_framed's parallel test needs it only for a nearly
- * parallel face and then computes it itself) and the pre-filter's bound.
+/* What the faces' tests need, made at the first leaf: the frame, the ray
+ * as one lane with its fast-range verdict, and the pre-filter's bound.
  * d * d may overflow (infinite bound: every triangle goes to the exact
  * test) or, near zero, underflow below the floor. */
 static void query_leaf_init(query *q)
 {
-    ray_frame_shear_no_len(q->ray, &q->frame);
+    ray_frame_shear(q->ray, &q->frame);
     q->frame_ready = 1;
+    lane_ray_from(&q->lane, q->ray);
+    q->fast_range = !lane_ray_in_range(&q->lane, 0x1p200) ? 0
+                  : q->mesh->coord_bound <= 0x1p200     ? 1
+                                                        : -1;
     q->edge_bound = EDGE_BOUND_ULPS * UNIT_ROUNDOFF * q->d * q->d;
     if (!(q->edge_bound > EDGE_BOUND_FLOOR))
         q->edge_bound = isnan(q->edge_bound) ? INFINITY : EDGE_BOUND_FLOOR;
@@ -420,20 +433,67 @@ static ALWAYS_INLINE int triangle_candidate(const query *q, const double *v, dou
     return !(z_min - slack > t_hi || z_max + slack < t_lo);
 }
 
-/* (a.t, a.prim) before (b.t, b.prim). */
-static inline int hit_before(const isect_hit *a, const isect_hit *b)
+/* The largest |coordinate| of face f's vertices. */
+static double face_extent(const isect_mesh *m, int32_t f)
 {
-    return a->t < b->t || (a->t == b->t && a->prim < b->prim);
+    const int32_t *c = m->idx + mesh_face_start(m, f);
+    int size = mesh_face_size(m, f);
+    double e = 0.0;
+    for (int i = 0; i < size; i++)
+        e = fmax_nan(e, max_abs3(mesh_vertex(m, c[i])));
+    return e;
 }
 
-/* The max-heap of the best cap hits (by (t, prim)), at hits[0..n). */
-static void heap_sift_down(isect_hit *h, int64_t n, int64_t i)
+/* The exact crossing of face f's plane (the plane its test takes t from)
+ * with the line of ray, in the scaled units of planar.h's *_crossing_xp. */
+static void face_crossing_xp(const isect_mesh *m, const isect_ray *ray, int32_t f, int e,
+                             int e_dir, xp *num, xp *den)
+{
+    const int32_t *c = m->idx + mesh_face_start(m, f);
+    int size = mesh_face_size(m, f);
+    if (size == 3)
+        triangle_crossing_xp(ray, mesh_vertex(m, c[0]), mesh_vertex(m, c[1]),
+                             mesh_vertex(m, c[2]), e, e_dir, num, den);
+    else
+        polygon_crossing_xp(ray, m->verts, c, size, e, e_dir, num, den);
+}
+
+/*
+ * (a.t, a.prim) before (b.t, b.prim), where a t rounded alike is told apart
+ * by the exact crossing parameters of the two faces (SPEC, accuracy
+ * contract: the closest hit is the exactly closest one; a ray grazing a
+ * silhouette edge enters one face and leaves the next within a fraction
+ * of an ulp), and exactly equal ones by the face index. Both records are
+ * hits, so neither face is parallel to the ray (den != 0); one scaling for
+ * both faces lets core/ratio.c compare them exactly. Rounded ties are
+ * rare, so the exact comparison costs nothing on the whole.
+ */
+static int hit_before(const query *q, const isect_hit *a, const isect_hit *b)
+{
+    if (a->t != b->t)
+        return a->t < b->t;
+    if (a->prim == b->prim)
+        return 0;
+    const isect_mesh *m = q->mesh;
+    const isect_ray *ray = q->ray;
+    double ext = fmax_nan(max_abs3(ray->org),
+                          fmax_nan(face_extent(m, a->prim), face_extent(m, b->prim)));
+    int e = pow2_exponent(ext), e_dir = pow2_exponent(max_abs3(ray->dir));
+    xp na, da, nb, db;
+    face_crossing_xp(m, ray, a->prim, e, e_dir, &na, &da);
+    face_crossing_xp(m, ray, b->prim, e, e_dir, &nb, &db);
+    int c = ratio_cmp(&na, &da, &nb, &db);
+    return c != 0 ? c < 0 : a->prim < b->prim;
+}
+
+/* The max-heap of the best cap hits (by hit_before), at hits[0..n). */
+static void heap_sift_down(const query *q, isect_hit *h, int64_t n, int64_t i)
 {
     for (;;) {
         int64_t l = 2 * i + 1, r = l + 1, top = i;
-        if (l < n && hit_before(&h[top], &h[l]))
+        if (l < n && hit_before(q, &h[top], &h[l]))
             top = l;
-        if (r < n && hit_before(&h[top], &h[r]))
+        if (r < n && hit_before(q, &h[top], &h[r]))
             top = r;
         if (top == i)
             return;
@@ -444,13 +504,13 @@ static void heap_sift_down(isect_hit *h, int64_t n, int64_t i)
     }
 }
 
-static void heap_push(isect_hit *h, int64_t n, const isect_hit *x)
+static void heap_push(const query *q, isect_hit *h, int64_t n, const isect_hit *x)
 {
     int64_t i = n;
     h[i] = *x;
     while (i > 0) {
         int64_t parent = (i - 1) / 2;
-        if (!hit_before(&h[parent], &h[i]))
+        if (!hit_before(q, &h[parent], &h[i]))
             return;
         isect_hit tmp = h[i];
         h[i] = h[parent];
@@ -460,13 +520,13 @@ static void heap_push(isect_hit *h, int64_t n, const isect_hit *x)
 }
 
 /* In place ascending order of a max-heap of n hits. */
-static void heap_sort(isect_hit *h, int64_t n)
+static void heap_sort(const query *q, isect_hit *h, int64_t n)
 {
     for (int64_t end = n - 1; end > 0; end--) {
         isect_hit tmp = h[0];
         h[0] = h[end];
         h[end] = tmp;
-        heap_sift_down(h, end, 0);
+        heap_sift_down(q, h, end, 0);
     }
 }
 
@@ -476,7 +536,7 @@ static int query_take(query *q, int mode, const isect_hit *h)
 {
     switch (mode) {
     case QUERY_CLOSEST:
-        if (!q->found || hit_before(h, &q->best)) {
+        if (!q->found || hit_before(q, h, &q->best)) {
             q->best = *h;
             q->found = 1;
             q->t_limit = h->t;
@@ -486,10 +546,10 @@ static int query_take(query *q, int mode, const isect_hit *h)
     case QUERY_ALL: {
         int64_t kept = q->count < q->cap ? q->count : q->cap;
         if (q->count < q->cap) {
-            heap_push(q->hits, kept, h);
-        } else if (q->cap > 0 && hit_before(h, &q->hits[0])) {
+            heap_push(q, q->hits, kept, h);
+        } else if (q->cap > 0 && hit_before(q, h, &q->hits[0])) {
             q->hits[0] = *h;
-            heap_sift_down(q->hits, kept, 0);
+            heap_sift_down(q, q->hits, kept, 0);
         }
         q->count++;
         return 0;
@@ -515,12 +575,13 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
         if (p->nverts == 3) {
             if (!triangle_candidate(q, p->v, ray->tmin, q->t_limit))
                 continue;
-            /* The plane precomputed (zero: triangle_hit_framed never hits
-             * this face); the face is not collinear (degenerate faces are
-             * not in the BVH), so the exact collinearity test is skipped. */
+            /* The plane precomputed (zero: the exact test never hits this
+             * face; degenerate faces are not in the BVH anyway). */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
-            hit = triangle_hit(&q->frame, ray, q->prm, p->v, p->v + 3, p->v + 6, p->n, 1, &h);
+            int fast = q->fast_range >= 0 ? q->fast_range
+                                          : triangle_fast_range(&q->lane, p->v, p->v + 3, p->v + 6);
+            hit = triangle_hit(&q->frame, ray, &q->lane, fast, p->v, p->v + 3, p->v + 6, p->n, &h);
         } else {
             hit = polygon_hit_plane_framed(&q->frame, ray, m->verts,
                                            m->idx + mesh_face_start(m, p->face), p->nverts,
@@ -905,7 +966,7 @@ int64_t mesh_hits_all(const isect_shape *s, const isect_ray *ray,
     q.hits = hits;
     q.cap = cap;
     query_run(&q, QUERY_ALL, cpu_has_avx2_fma());
-    heap_sort(hits, q.count < cap ? q.count : cap);
+    heap_sort(&q, hits, q.count < cap ? q.count : cap);
     return q.count;
 }
 

@@ -1,28 +1,24 @@
 /*
- * planar.h — ray/face tests in a precomputed sheared frame, shared by the
- * triangle and polygon primitives and (later) the mesh BVH, so that the
- * exactly-once logic at shared edges and vertices is written once.
+ * planar.h — what triangles, polygons and mesh faces share: their planes,
+ * the crossing record, the exact crossing parameters, and the polygon test
+ * in a precomputed sheared frame (the triangle's is triangle_test.h), so
+ * that the exactly-once logic at shared edges and vertices is written once.
  *
- * Both tests report the hit of the ray's whole line (any t; the caller
- * filters [tmin, tmax] and culls), with a unit normal by the right-hand rule
- * over the vertex order, kind ENTER when dir.normal < 0 else EXIT, prim -1.
- * A face parallel to the ray by the epsilon policy (|n.d| <= eps |n| |d|)
- * or of zero area is never hit. Whether the line crosses the face is decided
- * exactly at the frame's 2D origin, perturbed by (-e^2, -e) (predicates.h),
- * so a triangle and the same triangle given as a polygon agree on every ray.
+ * Whether a ray crosses a face is decided exactly for the given doubles at
+ * the 2D origin of the ray's sheared frame, on the exact projection of the
+ * vertices, perturbed by (-e^2, -e) (isect.h, "Tie-breaking";
+ * core/frame_signs.h), with no eps (revision 2), so a triangle and the same
+ * triangle given as a polygon agree on every ray. Only crossings in [tmin,
+ * tmax] (decided exactly) are reported, with a unit normal by the
+ * right-hand rule over the vertex order, kind ENTER when dir.N < 0 exactly
+ * else EXIT, prim -1; the caller culls. A face of zero area is never hit.
  */
 #ifndef ISECT_PLANAR_H
 #define ISECT_PLANAR_H
 
 #include "prim/prim.h"
 #include "core/ray_frame.h"
-
-/* Triangle a, b, c: 1 and *out (uv = barycentric weights of b and c, t
- * interpolated from the sheared z of the vertices) or 0. f is the frame of
- * ray. */
-int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
-                        const double a[3], const double b[3], const double c[3],
-                        isect_hit *out);
+#include "core/expansion.h"
 
 /* The unit normal of (b - a) x (c - a), accurate to about an ulp (the
  * cross product as a double-double from exact edges), for callers that
@@ -42,6 +38,19 @@ int triangle_plane(const double a[3], const double b[3], const double c[3], doub
  * (or, exactly parallel, none at all). */
 int triangle_record(const isect_ray *ray, const double a[3], const double b[3], const double c[3],
                     const double *normal, double u, double v, isect_hit *out);
+
+/* The crossing of the line of ray with the plane of triangle a, b, c
+ * (triangle_crossing_xp) or of a polygon (its Newell plane through the
+ * vertex centroid; polygon_crossing_xp) as t = (num/den) 2^(e - e_dir),
+ * num and den exact expansions: positions (the origin and every vertex)
+ * scaled by 2^-e, the direction by 2^-e_dir. The caller picks e and e_dir
+ * (pow2_exponent of the largest magnitudes: exact scalings, no overflow),
+ * so that crossings with different faces can be compared exactly with one
+ * scaling (core/ratio.c: ratio_cmp). */
+void triangle_crossing_xp(const isect_ray *ray, const double a[3], const double b[3],
+                          const double c[3], int e, int e_dir, xp *num, xp *den);
+void polygon_crossing_xp(const isect_ray *ray, const double *v, const int32_t *idx, int n,
+                         int e, int e_dir, xp *num, xp *den);
 
 /* A polygon's plane (the golden reference's: Newell's normal N = sum_i v_i
  * x v_{i+1} through the vertex centroid m), as double-doubles: N scaled by

@@ -5,7 +5,8 @@
  * isect_polygon_normal and isect_plane_from_points.
  */
 #include "prim/planar.h"
-#include "prim/triangle_lanes.h"
+#include "prim/polygon_lanes.h"
+#include "core/frame_signs.h"
 #include "core/ratio.h"
 #include "core/expansion.h"
 #include "core/predicates.h"
@@ -13,8 +14,7 @@
 #include "core/vec3.h"
 
 #include <stddef.h>
-
-static const double frame_origin[2] = { 0.0, 0.0 };
+#include <string.h>
 
 static const double *vertex_at(const double *v, const int32_t *idx, int i)
 {
@@ -184,27 +184,76 @@ int polygon_plane_exact_dd(const double *v, const int32_t *idx, int n, poly_plan
     return polygon_plane_from_exact(v, idx, n, pp);
 }
 
-/* Winding number of the perturbed frame origin around the projected
- * polygon; each vertex is projected once, by the same arithmetic as in
- * every other face that uses it. */
-static int32_t frame_winding(const ray_frame *f, const double *v, const int32_t *idx, int n)
+/*
+ * The winding number of the perturbed frame origin around the exact
+ * projection of the polygon (isect.h, "Tie-breaking"): face_lanes.h's
+ * count where every sign it used was certified; otherwise the same count
+ * with each uncertain sign (a vertex's side of the test line, the
+ * orientation of an edge crossing it) decided exactly by
+ * core/frame_signs.c. Either way each vertex's and each edge's verdict is a
+ * function of it and the ray alone, so faces sharing them agree.
+ */
+static int32_t frame_winding(const ray_frame *f, const lane_ray *lr, const double *v,
+                             const int32_t *idx, int n)
 {
-    double prev[3], cur[3];
-    ray_frame_project(f, vertex_at(v, idx, n - 1), prev);
+    int fast = vertex_extent(v, idx, n) <= 0x1p200 && lane_ray_in_range(lr, 0x1p200);
+    face_axes fa;
+    face_axes_make(lr, &fa);
+    if (fast) {
+        face_winding fw;
+        face_winding_lanes(v, idx, n, lr, &fa, &fw);
+        if (fw.certain)
+            return (int32_t)fw.winding;
+    }
+    const double *p = vertex_at(v, idx, n - 1);
+    face_wrel prev, cur;
+    face_wrel_make(p, lr, &fa, &prev);
+    int p_above = fast && prev.sure ? prev.above : frame_above_exact(f, p);
     int32_t winding = 0;
     for (int i = 0; i < n; i++) {
-        ray_frame_project(f, vertex_at(v, idx, i), cur);
-        winding += winding_edge(prev, cur, frame_origin);
-        v3_copy(prev, cur);
+        const double *q = vertex_at(v, idx, i);
+        face_wrel_make(q, lr, &fa, &cur);
+        int q_above = fast && cur.sure ? cur.above : frame_above_exact(f, q);
+        if (p_above != q_above) {
+            double w = face_dot(prev.p.a, cur.x);
+            double e = face_orient_bound(fa.m_d, prev.p.n1, cur.p.n1);
+            int side = fast && w > e ? 1 : fast && w < -e ? -1 : frame_orient_exact(f, p, q);
+            if (!p_above)
+                winding += side > 0;  /* upward, origin on the left */
+            else
+                winding -= side < 0;  /* downward, origin on the right */
+        }
+        prev = cur;
+        p = q;
+        p_above = q_above;
     }
     return winding;
+}
+
+void polygon_crossing_xp(const isect_ray *ray, const double *v, const int32_t *idx, int n,
+                         int e, int e_dir, xp *num, xp *den)
+{
+    xp normal[3], sum[3], tmp;
+    polygon_plane_exact(v, idx, n, e, normal, sum);
+    xp_set(num, 0.0);
+    xp_set(den, 0.0);
+    for (int k = 0; k < 3; k++) {
+        xp_set(&tmp, (double)n);
+        xp_scale(&tmp, &tmp, -pow2_scale(ray->org[k], -e));
+        xp_add(&tmp, &tmp, &sum[k]);
+        xp_add_mul(num, &normal[k], &tmp);
+        xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir));
+        xp_scale(&tmp, &tmp, (double)n); /* n d_k rounded would not be exact */
+        xp_add(den, den, &tmp);
+    }
 }
 
 /*
  * The exact path of the crossing parameter: with the coordinates scaled by
  * 2^-e (the direction by its own power of two), n t = num/den with num =
  * sum_k N_k (sum_i v_ik - n o_k) and den = n N.dir, both exact expansions
- * (N the exact Newell normal), decided by core/ratio.c.
+ * (N the exact Newell normal; polygon_crossing_xp), decided by
+ * core/ratio.c.
  */
 static int polygon_crossing_exact(const isect_ray *ray, const double *v, const int32_t *idx,
                                   int n, double *t_hi, double *t_lo, int *enter, int *t_shift_out,
@@ -213,19 +262,8 @@ static int polygon_crossing_exact(const isect_ray *ray, const double *v, const i
     int e = pow2_exponent(fmax_nan(vertex_extent(v, idx, n), max_abs3(ray->org)));
     int e_dir = pow2_exponent(max_abs3(ray->dir));
     int t_shift = e - e_dir;
-    xp normal[3], sum[3], num, den, tmp;
-    polygon_plane_exact(v, idx, n, e, normal, sum);
-    xp_set(&num, 0.0);
-    xp_set(&den, 0.0);
-    for (int k = 0; k < 3; k++) {
-        xp_set(&tmp, (double)n);
-        xp_scale(&tmp, &tmp, -pow2_scale(ray->org[k], -e));
-        xp_add(&tmp, &tmp, &sum[k]);
-        xp_add_mul(&num, &normal[k], &tmp);
-        xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir));
-        xp_scale(&tmp, &tmp, (double)n); /* n d_k rounded would not be exact */
-        xp_add(&den, &den, &tmp);
-    }
+    xp num, den;
+    polygon_crossing_xp(ray, v, idx, n, e, e_dir, &num, &den);
     int in_range;
     if (!ratio_decide(&num, &den, pow2_scale(ray->tmin, -t_shift),
                       pow2_scale(ray->tmax, -t_shift), &in_range, t_hi, t_lo)
@@ -242,10 +280,10 @@ int polygon_hit_plane_framed(const ray_frame *f, const isect_ray *ray, const dou
                              isect_hit *out)
 {
     /* Revision 2: no epsilon; the exact winding number alone decides. */
-    if (!fill_rule_inside(frame_winding(f, v, idx, n), rule))
-        return 0;
     lane_ray lr;
     lane_ray_from(&lr, ray);
+    if (!fill_rule_inside(frame_winding(f, &lr, v, idx, n), rule))
+        return 0;
     vdd t;
     int enter;
     double point[3];
@@ -313,13 +351,51 @@ int polygon_check(const isect_shape *s)
     return all_finite(s->data, 3 * (int64_t)s->n) ? ISECT_OK : ISECT_E_NONFINITE;
 }
 
+void polygon_prepare(const double *v, int n, int rule, poly_prep *pp)
+{
+    pp->v = v;
+    pp->n = n;
+    pp->rule = rule;
+    pp->degenerate = !polygon_plane(v, NULL, n, &pp->plane);
+    if (pp->degenerate)
+        memset(&pp->plane, 0, sizeof pp->plane);
+    pp->in_range = vertex_extent(v, NULL, n) <= 0x1p200 && max_abs3(pp->plane.m_hi) <= 0x1p200;
+}
+
+/* The fast kernel at LANE_W = 1 (the batch's), then for the rays it leaves
+ * undecided the exact path from the same plane. */
 int polygon_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                  isect_hit out[ISECT_MAX_HITS])
 {
     (void)prm; /* no epsilon for faces (revision 2) */
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (vertex_extent(s->data, NULL, s->n) <= 0x1p200 && lane_ray_in_range(&lr, 0x1p200)) {
+        /* the kernel's verdict for a certainly outside ray, before the
+         * plane is prepared (most rays of a scalar or all-hits call miss) */
+        face_axes fa;
+        face_axes_make(&lr, &fa);
+        face_winding fw;
+        face_winding_lanes(s->data, NULL, s->n, &lr, &fa, &fw);
+        int inside = s->flags == ISECT_NONZERO ? fw.winding != 0.0 : fw.odd > 0.0;
+        if (fw.certain && !inside)
+            return 0;
+    }
+    poly_prep pp;
+    polygon_prepare(s->data, s->n, s->flags, &pp);
+    if (pp.degenerate)
+        return 0;
+    lane_hit h;
+    poly_lanes_first(&pp, &lr, &h);
+    if (!h.slow) {
+        if (!h.found)
+            return 0;
+        lane_hit_store(&h, 0, &out[0]);
+        return 1;
+    }
     ray_frame f;
     ray_frame_shear(ray, &f);
-    return polygon_hit_framed(&f, ray, s->data, NULL, s->n, s->flags, &out[0]);
+    return polygon_hit_plane_framed(&f, ray, s->data, NULL, s->n, s->flags, &pp.plane, &out[0]);
 }
 
 /* Shared checks of the two helpers: ISECT_OK, or the error to return. */

@@ -9,6 +9,7 @@
 #include "core/expansion.h"
 #include "core/scaling.h"
 #include "core/ratio.h"
+#include "core/vec3.h"
 
 #include <string.h>
 
@@ -76,21 +77,10 @@ int triangle_plane(const double a[3], const double b[3], const double c[3], doub
     return *nonzero && unit3_accurate(normal, v);
 }
 
-/*
- * The exact path of the crossing parameter: every coordinate scaled by one
- * power of two (the ray's direction by its own), the edges and a - o exact
- * as two parts, N = e1 x e2, num = N.(a - o) and den = N.dir as exact
- * expansions; core/ratio.c decides den != 0 and tmin <= t <= tmax exactly
- * and rounds t = num/den to a double-double; t = t' 2^(e - e_dir).
- */
-static int triangle_crossing_exact(const isect_ray *ray, const double a[3], const double b[3],
-                                   const double c[3], double *t_hi, double *t_lo, int *enter,
-                                   int *t_shift_out, int *e_out)
+void triangle_crossing_xp(const isect_ray *ray, const double a[3], const double b[3],
+                          const double c[3], int e, int e_dir, xp *num, xp *den)
 {
-    double m = fmax_nan(max_abs3(ray->org), fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))));
-    int e = pow2_exponent(m), e_dir = pow2_exponent(max_abs3(ray->dir));
-    int t_shift = e - e_dir;
-    xp e1[3], e2[3], A[3], n[3], num, den, tmp;
+    xp e1[3], e2[3], A[3], n[3], tmp;
     for (int k = 0; k < 3; k++) {
         double ak = pow2_scale(a[k], -e);
         xp_diff(&e1[k], pow2_scale(b[k], -e), ak);
@@ -103,13 +93,32 @@ static int triangle_crossing_exact(const isect_ray *ray, const double a[3], cons
         xp_mul(&tmp, &e1[j], &e2[i]);
         xp_sub(&n[k], &n[k], &tmp);
     }
-    xp_set(&num, 0.0);
-    xp_set(&den, 0.0);
+    xp_set(num, 0.0);
+    xp_set(den, 0.0);
     for (int k = 0; k < 3; k++) {
-        xp_add_mul(&num, &n[k], &A[k]);
+        xp_add_mul(num, &n[k], &A[k]);
         xp_scale(&tmp, &n[k], pow2_scale(ray->dir[k], -e_dir));
-        xp_add(&den, &den, &tmp);
+        xp_add(den, den, &tmp);
     }
+}
+
+/*
+ * The exact path of the crossing parameter: every coordinate scaled by one
+ * power of two (the ray's direction by its own), the edges and a - o exact
+ * as two parts, N = e1 x e2, num = N.(a - o) and den = N.dir as exact
+ * expansions (triangle_crossing_xp); core/ratio.c decides den != 0 and
+ * tmin <= t <= tmax exactly and rounds t = num/den to a double-double;
+ * t = t' 2^(e - e_dir).
+ */
+static int triangle_crossing_exact(const isect_ray *ray, const double a[3], const double b[3],
+                                   const double c[3], double *t_hi, double *t_lo, int *enter,
+                                   int *t_shift_out, int *e_out)
+{
+    double m = fmax_nan(max_abs3(ray->org), fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))));
+    int e = pow2_exponent(m), e_dir = pow2_exponent(max_abs3(ray->dir));
+    int t_shift = e - e_dir;
+    xp num, den;
+    triangle_crossing_xp(ray, a, b, c, e, e_dir, &num, &den);
     int in_range;
     if (!ratio_decide(&num, &den, pow2_scale(ray->tmin, -t_shift),
                       pow2_scale(ray->tmax, -t_shift), &in_range, t_hi, t_lo)
@@ -183,11 +192,20 @@ int triangle_record(const isect_ray *ray, const double a[3], const double b[3], 
     return 1;
 }
 
-int triangle_hit_framed(const ray_frame *f, const isect_ray *ray, const isect_params *prm,
-                        const double a[3], const double b[3], const double c[3],
-                        isect_hit *out)
+void triangle_prepare(const double *data, tri_prep *tp)
 {
-    return triangle_hit(f, ray, prm, a, b, c, NULL, 0, out);
+    const double *a = data, *b = data + 3, *c = data + 6;
+    memcpy(tp->v, data, sizeof tp->v);
+    tri_plane pl;
+    triangle_plane_dd(a, b, c, &pl);
+    for (int k = 0; k < 3; k++) {
+        tp->n_hi[k] = pl.n[k].hi;
+        tp->n_lo[k] = pl.n[k].lo;
+        tp->n_err[k] = pl.err[k];
+    }
+    int nonzero;
+    tp->degenerate = !triangle_plane(a, b, c, tp->normal, &nonzero);
+    tp->in_range = triangle_in_range(a, b, c);
 }
 
 int triangle_check(const isect_shape *s)
@@ -195,12 +213,36 @@ int triangle_check(const isect_shape *s)
     return all_finite(s->data, 9) ? ISECT_OK : ISECT_E_NONFINITE;
 }
 
+/* The fast kernel at LANE_W = 1 (the batch's, so both give the same
+ * record), then for the rays it leaves undecided the exact path: the same
+ * signs, each uncertain one decided exactly, and triangle_record. A ray
+ * the certified signs put outside returns before the plane is prepared
+ * (most rays of a scalar or all-hits call miss). */
 int triangle_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                   isect_hit out[ISECT_MAX_HITS])
 {
+    (void)prm; /* no epsilon for faces (revision 2) */
+    const double *a = s->data, *b = s->data + 3, *c = s->data + 6;
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    int fast_range = triangle_fast_range(&lr, a, b, c);
+    if (fast_range && !tri_lanes_inside_maybe(a, b, c, &lr))
+        return 0; /* the kernel's verdict too, without preparing the plane */
+    tri_prep tp;
+    triangle_prepare(s->data, &tp);
+    if (tp.degenerate)
+        return 0;
+    lane_hit h;
+    tri_lanes_first(&tp, &lr, &h);
+    if (!h.slow) {
+        if (!h.found)
+            return 0;
+        lane_hit_store(&h, 0, &out[0]);
+        return 1;
+    }
     ray_frame f;
-    ray_frame_shear_no_len(ray, &f); /* |dir| only if needed (not_parallel) */
-    return triangle_hit_framed(&f, ray, prm, s->data, s->data + 3, s->data + 6, &out[0]);
+    ray_frame_shear(ray, &f);
+    return triangle_hit(&f, ray, &lr, fast_range, a, b, c, tp.normal, &out[0]);
 }
 
 /* In front of the right-hand normal of a, b, c: orient3_sign is +1 below. */

@@ -26,11 +26,17 @@
  *
  * Range: every coordinate of a, b, c, o within 2^200, 2^-200 <= max|dir_k|
  * <= 2^200 (the caller checks the triangle; lane_ray_in_range the ray).
+ *
+ * tri_lanes_first is the triangle's whole fast kernel (the batch's, and the
+ * scalar call's at LANE_W = 1): the inside test from face_lanes.h's
+ * certified signs, this crossing, the record. Everything that depends on
+ * the triangle alone is prepared once (triangle_prepare, triangle.c).
  */
 #ifndef ISECT_TRIANGLE_LANES_H
 #define ISECT_TRIANGLE_LANES_H
 
 #include "prim/prim_lanes.h"
+#include "prim/face_lanes.h"
 
 #define TRI_LANES_U   0x1p-53
 #define TRI_LANES_U2  0x1p-106
@@ -135,6 +141,94 @@ static ALWAYS_INLINE void tri_crossing_solve(const tri_plane *tp, const vd a_hi[
                                      vd_le(err, vd_mul(vd_set1(3.5 * TRI_LANES_U), vd_abs(tc->t.hi)))));
     tc->out = vm_and(den_sure, lane_certainly_out(tc->t.hi, err, ray));
     tc->enter = vd_lt(den.hi, vd_zero());
+}
+
+/* A triangle's constants for the fast kernel, the same bits in every
+ * instruction set (computed once, by triangle_prepare in triangle.c). */
+typedef struct tri_prep {
+    double v[9];                           /* a, b, c */
+    double n_hi[3], n_lo[3], n_err[3];     /* tri_plane_make's N and bounds */
+    double normal[3];                      /* triangle_plane's unit normal */
+    int    in_range;                       /* every coordinate within 2^200 */
+    int    degenerate;                     /* no area: never hit */
+} tri_prep;
+
+void triangle_prepare(const double *data, tri_prep *tp);
+
+static ALWAYS_INLINE void tri_prep_vertices(const tri_prep *tp, vd a[3], vd b[3], vd c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        a[k] = vd_set1(tp->v[k]);
+        b[k] = vd_set1(tp->v[3 + k]);
+        c[k] = vd_set1(tp->v[6 + k]);
+    }
+}
+
+/* The lanes not certainly outside triangle a, b, c by the certified signs
+ * (the caller has checked face_lanes.h's range). */
+static ALWAYS_INLINE vm tri_lanes_inside_maybe(const double a[3], const double b[3],
+                                               const double c[3], const lane_ray *ray)
+{
+    const vd av[3] = { vd_set1(a[0]), vd_set1(a[1]), vd_set1(a[2]) };
+    const vd bv[3] = { vd_set1(b[0]), vd_set1(b[1]), vd_set1(b[2]) };
+    const vd cv[3] = { vd_set1(c[0]), vd_set1(c[1]), vd_set1(c[2]) };
+    tri_signs ts;
+    tri_signs_make(av, bv, cv, ray, &ts);
+    return vm_not(ts.out);
+}
+
+/* The batch's screen: the lanes not certainly outside the triangle (the
+ * certified signs alone; a lane it clears is one tri_lanes_first would
+ * report as no hit without deferring). Crossings are solved for the
+ * rest only. */
+static ALWAYS_INLINE vm tri_lanes_screen(const tri_prep *tp, const lane_ray *ray)
+{
+    if (tp->degenerate)
+        return vm_false();
+    vd a[3], b[3], c[3];
+    tri_prep_vertices(tp, a, b, c);
+    tri_signs ts;
+    tri_signs_make(a, b, c, ray, &ts);
+    vm ok = tp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
+    return vm_not(vm_and(ok, ts.out));
+}
+
+/*
+ * The first (only) hit of LANE_W rays. A lane is found when the certified
+ * signs put the frame origin inside and the crossing is certified in
+ * [tmin, tmax]; neither (no hit) when the signs put it outside or the
+ * crossing is certainly out of range; slow otherwise (an uncertain sign or
+ * crossing, or a ray outside the range): triangle.c's exact path, which
+ * starts from the same signs and the same crossing.
+ */
+static ALWAYS_INLINE void tri_lanes_first(const tri_prep *tp, const lane_ray *ray, lane_hit *h)
+{
+    vd a[3], b[3], c[3];
+    tri_prep_vertices(tp, a, b, c);
+    tri_signs ts;
+    tri_signs_make(a, b, c, ray, &ts);
+    tri_plane pl;
+    for (int k = 0; k < 3; k++) {
+        pl.n[k].hi = vd_set1(tp->n_hi[k]);
+        pl.n[k].lo = vd_set1(tp->n_lo[k]);
+        pl.err[k] = vd_set1(tp->n_err[k]);
+    }
+    const vd zero[3] = { vd_zero(), vd_zero(), vd_zero() };
+    tri_crossing tc;
+    tri_crossing_solve(&pl, a, zero, vd_zero(), ray, &tc);
+
+    vm ok = tp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
+    vm decided = vm_or(ts.out, vm_and(ts.in, vm_or(tc.in, tc.out)));
+    h->slow = tp->degenerate ? vm_false() : vm_not(vm_and(ok, decided));
+    h->found = tp->degenerate ? vm_false() : vm_andnot(vm_and(ts.in, tc.in), h->slow);
+
+    h->t = vd_add(lane_clamp_t(tc.t.hi, ray), vd_zero());
+    lane_point_on_ray(ray, tc.t, h->point);
+    for (int k = 0; k < 3; k++)
+        h->normal[k] = vd_set1(tp->normal[k]);
+    tri_weights_uv(ts.w, &h->uv[0], &h->uv[1]);
+    h->prim = vd_set1(-1.0);
+    h->kind = vd_sel(tc.enter, vd_set1((double)ISECT_ENTER), vd_set1((double)ISECT_EXIT));
 }
 
 #endif /* ISECT_TRIANGLE_LANES_H */
