@@ -283,4 +283,96 @@ static ALWAYS_INLINE vd lane_clamp_t(vd t, const lane_ray *r)
     return vd_min(vd_max(t, r->tmin), r->tmax);
 }
 
+/*
+ * Starting values for the two roots of A t^2 + 2B t + C from plain
+ * coefficients and the plain reduced discriminant G (any sign of A): never
+ * -B + sqrt(G) with B > 0 (Haines et al.), q = -(B + sign(B) sqrt(G)) and
+ * the roots q/A and C/q, both from one division, q/A = q^2/(qA), C/q =
+ * CA/(qA). The entry root r- = (-B - sqrt(G))/A (where Q' = -2 sqrt(G) < 0)
+ * is q/A when B >= 0, C/q when B < 0; the exit r+ the other. Only starting
+ * values: a NaN or infinity (q A = 0) fails the refinement's certificate.
+ */
+static ALWAYS_INLINE void lane_quad_starts(vd a, vd b, vd c, vd g, vd *t_enter, vd *t_exit)
+{
+    vd s = vd_sqrt(vd_max(g, vd_zero()));
+    vd q = vd_neg(vd_add(b, vd_copysign(s, b)));
+    vd inv = vd_div(vd_set1(1.0), vd_mul(q, a));
+    vd t_qa = vd_mul(vd_mul(q, q), inv), t_cq = vd_mul(vd_mul(c, a), inv);
+    vm b_neg = vd_lt(b, vd_zero());
+    *t_enter = vd_sel(b_neg, t_cq, t_qa);
+    *t_exit = vd_sel(b_neg, t_qa, t_cq);
+}
+
+/* A refined root's verdict against [tmin, tmax] (ok: its bound holds):
+ * certainly in and within 3.5u|t| (so t is within 4 ulp of the exact root:
+ * ulp(t) > u|t|), certainly outside, or neither. */
+static ALWAYS_INLINE vm lane_root_in(vm ok, vd t, vd err, const lane_ray *r)
+{
+    return vm_and(vm_and(ok, lane_certainly_in(t, err, r)),
+                  vd_le(err, vd_mul(vd_set1(3.5 * 0x1p-53), vd_abs(t))));
+}
+static ALWAYS_INLINE vm lane_root_out(vm ok, vd t, vd err, const lane_ray *r)
+{
+    return vm_and(ok, lane_certainly_out(t, err, r));
+}
+
+/*
+ * The verdicts on a line's two crossings (lower t first), shared by the
+ * quadric family's kernels. Per crossing the kernel says whether it is
+ * reported (in: a certified root, of the kind expected of it, certainly in
+ * [tmin, tmax] and whatever else the shape requires, e.g. a cylinder's
+ * slab) or certainly not (out); `beyond` that the lower one lies certainly
+ * after tmax (so does the upper one). The upper crossing is refined only
+ * where needed (lane_pair_need_hi): for the first hit when the lower one
+ * is certainly not reported and not beyond, for all hits unless beyond.
+ * decided[i] says in[i] is certain; a crossing decided here is decided the
+ * same way, with the same record, in every query, so a scalar all-hits
+ * path asks its exact path only for the undecided ones.
+ */
+typedef struct lane_pair {
+    vm plain_slow;  /* nothing decided (maybe tangent, out of range, ...) */
+    vm slow;        /* the first hit is not decided */
+    vm in[2];       /* lower, upper: reported */
+    vm decided[2];  /* in[i] is certain (crossing i absent, out or in) */
+} lane_pair;
+
+static ALWAYS_INLINE vm lane_pair_need_hi(vm cross, vm lo_out, vm lo_beyond, int first)
+{
+    return vm_and(cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
+}
+
+/*
+ * Whether the two roots x < y of A t^2 + 2B t + C are more than 16u
+ * max(|x|, |y|) apart, from a lower bound g_low > 0 of the reduced
+ * discriminant (y - x = 2 sqrt(G)/|A|), a_up >= |A| and one root known to
+ * lie within err of t: if neither root is twice the other, y - x > 32u
+ * |t|-ish suffices, and otherwise y - x >= max/2 anyway. Then any values
+ * within 4 ulp (8u) of the roots, from this kernel or from an exact path,
+ * and clamped into [tmin, tmax] (monotone), keep the roots' order, so the
+ * scalar call sorts the crossings as the batch assumes.
+ */
+static ALWAYS_INLINE vm lane_roots_apart(vd g_low, vd a_up, vd t, vd err)
+{
+    vd x = vd_mul(vd_mul(vd_set1(16.0 * 0x1p-53 * (1.0 + 0x1p-40)), vd_add(vd_abs(t), err)), a_up);
+    return vd_gt(g_low, vd_mul(x, x));
+}
+
+/* cross: two crossings, certainly (else none, unless plain_slow); apart:
+ * lane_roots_apart (a crossing pair that is not defers); none: the shape is
+ * degenerate (never hit); lo_ and hi_ in / out as above, already including
+ * the check of each root's kind. */
+static ALWAYS_INLINE void lane_pair_decide(vm plain_slow, vm none, vm cross, vm apart, vm lo_in,
+                                           vm lo_out, vm need_hi, vm hi_in, vm hi_out, lane_pair *pr)
+{
+    plain_slow = vm_or(plain_slow, vm_andnot(cross, apart));
+    vm lo_decided = vm_or(vm_not(cross), vm_or(lo_in, lo_out));
+    vm hi_decided = vm_or(vm_not(need_hi), vm_or(hi_in, hi_out));
+    pr->plain_slow = vm_andnot(plain_slow, none);
+    pr->decided[0] = vm_or(none, vm_andnot(lo_decided, plain_slow));
+    pr->decided[1] = vm_or(none, vm_andnot(vm_and(hi_decided, lo_decided), plain_slow));
+    pr->in[0] = vm_andnot(vm_and(cross, lo_in), none);
+    pr->in[1] = vm_andnot(vm_and(need_hi, hi_in), none);
+    pr->slow = vm_or(pr->plain_slow, vm_not(vm_and(pr->decided[0], pr->decided[1])));
+}
+
 #endif /* ISECT_PRIM_LANES_H */

@@ -234,32 +234,25 @@ int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
         return 0;
     sphere_lanes sl;
     sphere_lanes_solve(&sp, &lr, 0, &sl);
-    if (sl.plain_slow)
+    if (sl.pr.plain_slow)
         return sphere_exact(s->data, ray, prm->eps, out);
-    /* Each crossing from the kernel where it decided it, from the exact
-     * path where not (both decide exactly, so they agree on which
-     * crossings exist; a decided crossing keeps the kernel's record, as in
-     * the batch). */
-    isect_hit exact[ISECT_MAX_HITS];
-    int exact_count = -1;
-    int count = 0;
+    /* Each crossing from the kernel where it decided it (its record, as in
+     * the batch), from the exact path where not. */
+    isect_hit rec[2], exact[ISECT_MAX_HITS];
+    int decided[2], in[2], exact_count = 0;
+    static const int32_t kind[2] = { ISECT_ENTER, ISECT_EXIT };
     for (int i = 0; i < 2; i++) {
-        if (sl.decided[i]) {
-            if (sl.in[i]) {
-                lane_hit h;
-                sphere_lanes_record(&sp, &lr, sl.root[i].t, sl.root[i].v, i == 1, &h);
-                lane_hit_store(&h, 0, &out[count++]);
-            }
-            continue;
+        decided[i] = sl.pr.decided[i];
+        in[i] = sl.pr.in[i];
+        if (decided[i] && in[i]) {
+            lane_hit h;
+            sphere_lanes_record(&sp, &lr, sl.root[i].t, sl.root[i].v, i == 1, &h);
+            lane_hit_store(&h, 0, &rec[i]);
         }
-        if (exact_count < 0)
-            exact_count = sphere_exact(s->data, ray, prm->eps, exact);
-        int32_t kind = i == 0 ? ISECT_ENTER : ISECT_EXIT;
-        for (int k = 0; k < exact_count; k++)
-            if (exact[k].kind == kind)
-                out[count++] = exact[k];
     }
-    return count;
+    if (!decided[0] || !decided[1])
+        exact_count = sphere_exact(s->data, ray, prm->eps, exact);
+    return hits_merge(rec, decided, in, kind, exact, exact_count, out);
 }
 
 /* The exact side of p: the sign of |p - c|^2 - r^2 (f = p - c exact as two

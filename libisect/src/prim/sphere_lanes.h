@@ -144,6 +144,7 @@ typedef struct sphere_plain {
     vd  d_up;   /* D rounded up: >= d.d */
     vm  cross;  /* two crossings, certainly */
     vm  slow;   /* maybe tangent, or out of range: the exact path decides */
+    vd  g_low;  /* <= G */
     vd  t_lo, t_hi; /* starting values for the entry and the exit */
 } sphere_plain;
 
@@ -179,17 +180,11 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
     vm miss = vd_lt(g, vd_neg(band));
     vm ok = sp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
     pl->slow = vm_not(vm_and(ok, vm_or(pl->cross, miss)));
+    pl->g_low = vd_sub(g, e_g);
 
-    /* Starting values; one division for both: q/D = q^2/(qD), C/q = CD/(qD). */
-    vd s = vd_sqrt(vd_max(g, vd_zero()));
-    vd q = vd_neg(vd_add(b, vd_copysign(s, b)));
     vd c = vd_sub(vd_add(vd_add(vd_mul(f0, f0), vd_mul(f1, f1)), vd_mul(f2, f2)),
                   vd_set1(sp->rr_hi));
-    vd inv = vd_div(vd_set1(1.0), vd_mul(q, dd));
-    vd t1 = vd_mul(vd_mul(q, q), inv), t2 = vd_mul(vd_mul(c, dd), inv);
-    vm b_neg = vd_lt(b, vd_zero()); /* q/D is the entry when B >= 0 */
-    pl->t_lo = vd_sel(b_neg, t2, t1);
-    pl->t_hi = vd_sel(b_neg, t1, t2);
+    lane_quad_starts(dd, b, c, g, &pl->t_lo, &pl->t_hi);
 }
 
 /*
@@ -260,18 +255,6 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
         rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
 }
 
-/* A refined root's verdict: in [tmin, tmax] and within 3.5u|t| (report it),
- * certainly outside (skip it), or neither (defer). */
-static ALWAYS_INLINE vm sphere_root_in(const sphere_root *rt, const lane_ray *ray)
-{
-    return vm_and(vm_and(rt->ok, lane_certainly_in(rt->t, rt->err, ray)),
-                  vd_le(rt->err, vd_mul(vd_set1(3.5 * SPHERE_LANES_U), vd_abs(rt->t))));
-}
-static ALWAYS_INLINE vm sphere_root_out(const sphere_root *rt, const lane_ray *ray)
-{
-    return vm_and(rt->ok, lane_certainly_out(rt->t, rt->err, ray));
-}
-
 /* The record of a crossing at t (entry or exit) with v = f + t d: the unit
  * outward normal v/|v|, the point — snapped onto the surface, c + r n,
  * where that is the more accurate placement (|c| + r below |o| + |t d|),
@@ -302,20 +285,12 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
 }
 
 /*
- * The crossings' verdicts. The entry is refined always, the exit when
- * needed: for the first hit when the entry lies certainly before tmin, for
- * all hits unless the entry lies certainly after tmax. Per crossing,
- * decided[i] says its verdict in[i] (report it, or not) is certain; the
- * first-hit query is slow where the plain solve defers or a needed
- * crossing is undecided. A crossing decided here is decided the same way
- * and gets the same record in every query, so the scalar all-hits path
- * (sphere.c) asks the exact path only for the undecided ones.
+ * The crossings' verdicts (prim_lanes.h: lane_pair): the entry is refined
+ * always, the exit where lane_pair_need_hi says. Each must be the root its
+ * kind says (the entry with Q' < 0).
  */
 typedef struct sphere_lanes {
-    vm plain_slow;     /* maybe tangent, out of range: nothing decided here */
-    vm slow;           /* the first hit is not decided */
-    vm in[2];          /* entry, exit: certainly in [tmin, tmax], within 3.5u|t| */
-    vm decided[2];     /* in[i] is certain (crossing i absent, out or in) */
+    lane_pair pr;
     sphere_root root[2];
 } sphere_lanes;
 
@@ -326,28 +301,23 @@ static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_r
     sphere_lanes_plain(sp, ray, &pl);
     sphere_root *lo = &sl->root[0], *hi = &sl->root[1];
     sphere_lanes_refine(sp, ray, &pl, pl.t_lo, lo);
-    vm lo_in = vm_and(pl.cross, sphere_root_in(lo, ray));
-    vm lo_out = vm_and(pl.cross, sphere_root_out(lo, ray));
-    vm absent = vm_not(pl.cross); /* a certain miss (plain_slow aside) */
-    vm lo_decided = vm_or(absent, vm_and(lo->enter, vm_or(lo_in, lo_out)));
+    vm lo_ok = vm_and(lo->ok, lo->enter);
+    vm lo_in = lane_root_in(lo_ok, lo->t, lo->err, ray);
+    vm lo_out = lane_root_out(lo_ok, lo->t, lo->err, ray);
     vm lo_beyond = vm_and(lo_out, vd_gt(lo->t, ray->tmax));
-    vm need_hi = vm_and(pl.cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
-    vm hi_in = vm_false(), hi_decided = vm_not(need_hi);
+    vm need_hi = lane_pair_need_hi(pl.cross, lo_out, lo_beyond, first);
+    vm hi_in = vm_false(), hi_out = vm_false();
     if (vm_any(vm_andnot(need_hi, pl.slow))) {
         sphere_lanes_refine(sp, ray, &pl, pl.t_hi, hi);
-        vm in = sphere_root_in(hi, ray), out = sphere_root_out(hi, ray);
-        hi_in = vm_and(need_hi, in);
-        hi_decided = vm_or(hi_decided, vm_andnot(vm_or(in, out), hi->enter));
+        vm hi_ok = vm_andnot(hi->ok, hi->enter);
+        hi_in = lane_root_in(hi_ok, hi->t, hi->err, ray);
+        hi_out = lane_root_out(hi_ok, hi->t, hi->err, ray);
     } else {
         *hi = *lo;
     }
+    vm apart = lane_roots_apart(pl.g_low, pl.d_up, lo->t, lo->err);
     vm none = sp->degenerate ? vm_true() : vm_false(); /* r = 0: never hit */
-    sl->plain_slow = vm_andnot(pl.slow, none);
-    sl->decided[0] = vm_or(none, vm_andnot(lo_decided, pl.slow));
-    sl->decided[1] = vm_or(none, vm_andnot(vm_and(hi_decided, lo_decided), pl.slow));
-    sl->in[0] = vm_andnot(lo_in, none);
-    sl->in[1] = vm_andnot(hi_in, none);
-    sl->slow = vm_or(sl->plain_slow, vm_not(vm_and(sl->decided[0], sl->decided[1])));
+    lane_pair_decide(pl.slow, none, pl.cross, apart, lo_in, lo_out, need_hi, hi_in, hi_out, &sl->pr);
     /* reported parameters stay inside [tmin, tmax] (+0, never -0) */
     lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
     hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
@@ -359,14 +329,14 @@ static ALWAYS_INLINE void sphere_lanes_first(const sphere_prep *sp, const lane_r
 {
     sphere_lanes sl;
     sphere_lanes_solve(sp, ray, 1, &sl);
-    vm exit = vm_andnot(sl.in[1], sl.in[0]);
+    vm exit = vm_andnot(sl.pr.in[1], sl.pr.in[0]);
     vd t = vd_sel(exit, sl.root[1].t, sl.root[0].t);
     vd v[3];
     for (int k = 0; k < 3; k++)
         v[k] = vd_sel(exit, sl.root[1].v[k], sl.root[0].v[k]);
     sphere_lanes_record(sp, ray, t, v, exit, h);
-    h->found = vm_andnot(vm_or(sl.in[0], sl.in[1]), sl.slow);
-    h->slow = sl.slow;
+    h->found = vm_andnot(vm_or(sl.pr.in[0], sl.pr.in[1]), sl.pr.slow);
+    h->slow = sl.pr.slow;
 }
 
 #endif /* ISECT_SPHERE_LANES_H */
