@@ -118,6 +118,33 @@ static void shape_sphere(test_shape *ts, const char *name, double cx, double cy,
     ts->size = r;
 }
 
+static void shape_ellipsoid(test_shape *ts, const char *name, const double c[3],
+                            const double radii[3])
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    for (int k = 0; k < 3; k++) {
+        ts->numbers[k] = ts->center[k] = c[k];
+        ts->numbers[3 + k] = radii[k];
+        ts->size = radii[k] > ts->size ? radii[k] : ts->size;
+    }
+    ts->shape.type = ISECT_ELLIPSOID;
+    ts->shape.data = ts->numbers;
+}
+
+/* Puts ts under the object-to-world matrix m; the centre and size for
+ * aiming become those of its world image (surface_point maps its
+ * object-space points by m). */
+static void shape_transform(test_shape *ts, const double m[16])
+{
+    CHECK(isect_xform_init(&ts->xform, m) == ISECT_OK);
+    ts->shape.xform = &ts->xform;
+    double c[3] = { ts->center[0], ts->center[1], ts->center[2] };
+    for (int i = 0; i < 3; i++)
+        ts->center[i] = m[4 * i] * c[0] + m[4 * i + 1] * c[1] + m[4 * i + 2] * c[2] + m[4 * i + 3];
+    ts->size *= 2.0;
+}
+
 /* A point near the surface of ts (object space == world space for the
  * untransformed shapes). */
 static void surface_point(const test_shape *ts, double p[3])
@@ -135,6 +162,10 @@ static void surface_point(const test_shape *ts, double p[3])
     case ISECT_SPHERE:
         for (int k = 0; k < 3; k++)
             p[k] = ts->numbers[k] + ts->numbers[3] * d[k];
+        break;
+    case ISECT_ELLIPSOID:
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->numbers[k] + ts->numbers[3 + k] * d[k];
         break;
     default:
         for (int k = 0; k < 3; k++)
@@ -315,7 +346,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 1000000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 8 };
+    enum { SHAPES = 15 };
     test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -335,6 +366,19 @@ int main(int argc, char **argv)
     shape_plane(&shapes[5], "plane", 0.3, -0.4, 0.866, -2.5);
     shape_plane(&shapes[6], "far plane", 1e-3, 2.0, -0.5, 3e7);
     shape_plane(&shapes[7], "axis plane", 0.0, 0.0, 1.0, 0.0);
+    static const double e_c[5][3] = { { 0.0, 0.1, -0.1 }, { 1e7, -3e6, 2.5e6 }, { -1e9, 2e9, 0.5 },
+                                      { 1e-150, 2e-150, -1e-150 }, { 1.0, 2.0, 3.0 } };
+    static const double e_r[5][3] = { { 1.2, 0.7, 0.9 }, { 1e-3, 3e-3, 2e-4 }, { 3e8, 1e8, 5e8 },
+                                      { 1e-151, 3e-151, 2e-151 }, { 0.75, 0.3, 1.5 } };
+    shape_ellipsoid(&shapes[8], "ellipsoid", e_c[0], e_r[0]);
+    shape_ellipsoid(&shapes[9], "small far ellipsoid", e_c[1], e_r[1]);
+    shape_ellipsoid(&shapes[10], "huge ellipsoid", e_c[2], e_r[2]);
+    shape_ellipsoid(&shapes[11], "tiny ellipsoid", e_c[3], e_r[3]);
+    shape_ellipsoid(&shapes[12], "transformed ellipsoid", e_c[4], e_r[4]);
+    shape_transform(&shapes[12], m);
+    static const double e_flat[3] = { 1.0, 1e-20, 2.0 }, e_long[3] = { 1e6, 1.0, 1.0 };
+    shape_ellipsoid(&shapes[13], "flat ellipsoid", e_c[0], e_flat);
+    shape_ellipsoid(&shapes[14], "long ellipsoid", e_c[4], e_long);
     for (int i = 0; i < SHAPES; i++)
         test_shape_rays(&shapes[i], n / SHAPES);
     printf("digest %016llx\n", (unsigned long long)digest);

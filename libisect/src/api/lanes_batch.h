@@ -9,6 +9,7 @@
 #include "api/lanes.h"
 #include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
+#include "prim/ellipsoid_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
 #define LANES_CAT(a, b) LANES_CAT2(a, b)
@@ -27,6 +28,15 @@ static ALWAYS_INLINE vm LANES_FN(screen_sphere)(const void *prep, const lane_ray
 static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     sphere_lanes_first((const sphere_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE vm LANES_FN(screen_ellipsoid)(const void *prep, const lane_ray *r)
+{
+    return ellipsoid_lanes_screen((const ellipsoid_prep *)prep, r);
+}
+static ALWAYS_INLINE void LANES_FN(kernel_ellipsoid)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    ellipsoid_lanes_first((const ellipsoid_prep *)prep, r, h);
 }
 
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
@@ -248,6 +258,16 @@ static int64_t LANES_FN(batch_sphere)(const shape_family *f, const isect_shape *
                           prm, closest);
 }
 
+static int64_t LANES_FN(batch_ellipsoid)(const shape_family *f, const isect_shape *s,
+                                         const isect_ray *rays, int64_t n,
+                                         const isect_params *prm, isect_hit *closest)
+{
+    ellipsoid_prep ep;
+    ellipsoid_prepare(s->data, prm->eps, &ep);
+    return LANES_FN(loop)(LANES_FN(screen_ellipsoid), LANES_FN(kernel_ellipsoid), &ep, f, s, rays,
+                          n, prm, closest);
+}
+
 static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
                                      const isect_ray *rays, int64_t n, const isect_params *prm,
                                      isect_hit *closest)
@@ -264,6 +284,8 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
         return LANES_FN(batch_plane);
     case ISECT_SPHERE:
         return LANES_FN(batch_sphere);
+    case ISECT_ELLIPSOID:
+        return LANES_FN(batch_ellipsoid);
     default:
         return NULL;
     }

@@ -341,6 +341,23 @@ static ALWAYS_INLINE vm lane_pair_need_hi(vm cross, vm lo_out, vm lo_beyond, int
     return vm_and(cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
 }
 
+/* The lower crossing's verdicts (ok: certified and of its expected kind)
+ * and the lanes that need the upper one. */
+static ALWAYS_INLINE vm lane_pair_lo(vm cross, vm ok, vd t, vd err, const lane_ray *r, int first,
+                                     vm *in, vm *out)
+{
+    *in = lane_root_in(ok, t, err, r);
+    *out = lane_root_out(ok, t, err, r);
+    return lane_pair_need_hi(cross, *out, vm_and(*out, vd_gt(t, r->tmax)), first);
+}
+
+/* The upper crossing's verdicts. */
+static ALWAYS_INLINE void lane_pair_hi(vm ok, vd t, vd err, const lane_ray *r, vm *in, vm *out)
+{
+    *in = lane_root_in(ok, t, err, r);
+    *out = lane_root_out(ok, t, err, r);
+}
+
 /*
  * Whether the two roots x < y of A t^2 + 2B t + C are more than 16u
  * max(|x|, |y|) apart, from a lower bound g_low > 0 of the reduced

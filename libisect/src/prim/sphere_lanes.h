@@ -301,17 +301,13 @@ static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_r
     sphere_lanes_plain(sp, ray, &pl);
     sphere_root *lo = &sl->root[0], *hi = &sl->root[1];
     sphere_lanes_refine(sp, ray, &pl, pl.t_lo, lo);
-    vm lo_ok = vm_and(lo->ok, lo->enter);
-    vm lo_in = lane_root_in(lo_ok, lo->t, lo->err, ray);
-    vm lo_out = lane_root_out(lo_ok, lo->t, lo->err, ray);
-    vm lo_beyond = vm_and(lo_out, vd_gt(lo->t, ray->tmax));
-    vm need_hi = lane_pair_need_hi(pl.cross, lo_out, lo_beyond, first);
+    vm lo_in, lo_out;
+    vm need_hi = lane_pair_lo(pl.cross, vm_and(lo->ok, lo->enter), lo->t, lo->err, ray, first,
+                              &lo_in, &lo_out);
     vm hi_in = vm_false(), hi_out = vm_false();
     if (vm_any(vm_andnot(need_hi, pl.slow))) {
         sphere_lanes_refine(sp, ray, &pl, pl.t_hi, hi);
-        vm hi_ok = vm_andnot(hi->ok, hi->enter);
-        hi_in = lane_root_in(hi_ok, hi->t, hi->err, ray);
-        hi_out = lane_root_out(hi_ok, hi->t, hi->err, ray);
+        lane_pair_hi(vm_andnot(hi->ok, hi->enter), hi->t, hi->err, ray, &hi_in, &hi_out);
     } else {
         *hi = *lo;
     }
