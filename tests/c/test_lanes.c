@@ -336,6 +336,8 @@ static void test_shape_rays(const test_shape *ts, int64_t n)
         else
             digest_add(&want[i], sizeof want[i]);
     }
+    if (getenv("LANES_DIGESTS"))
+        printf("%s %016llx\n", ts->name, (unsigned long long)digest);
     free(rays);
     free(want);
     free(got);

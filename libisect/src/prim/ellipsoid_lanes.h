@@ -158,12 +158,9 @@ static ALWAYS_INLINE vm ellipsoid_lanes_screen(const ellipsoid_prep *ep, const l
 
 /* The plain quantities shared by the refinements. */
 typedef struct ellipsoid_plain {
-    vdd f[3];     /* o - c exactly */
-    vd  a, a_up;  /* A, and an upper bound of the exact A */
-    vd  g_low;    /* <= G */
-    vm  cross;    /* two crossings, certainly */
-    vm  slow;     /* maybe tangent, or out of range */
-    vd  t_lo, t_hi;
+    lane_pair_plain pp;  /* slow: maybe tangent, or out of range */
+    vdd f[3];            /* o - c exactly */
+    vd  a;               /* A */
 } ellipsoid_plain;
 
 /*
@@ -203,25 +200,17 @@ static ALWAYS_INLINE void ellipsoid_lanes_plain(const ellipsoid_prep *ep, const 
                            vd_mul(vd_set1(4.0), vd_mul(am, vd_add(m_sum, am)))),
                     vd_set1(ELLIPSOID_LANES_ETA));
     vd band = vd_add(vd_mul(vd_set1(ep->eps * (1.0 + 0x1p-48)), rr_a), e_g);
-    pl->cross = vd_gt(g, band);
+    pl->pp.cross = vd_gt(g, band);
     vm miss = vd_lt(g, vd_neg(band));
     vm ok = ep->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
-    pl->slow = vm_not(vm_and(ok, vm_or(pl->cross, miss)));
-    pl->g_low = vd_sub(g, e_g);
+    pl->pp.slow = vm_not(vm_and(ok, vm_or(pl->pp.cross, miss)));
+    pl->pp.none = ep->degenerate ? vm_true() : vm_false();
+    pl->pp.lo_enter = vm_true();
+    pl->pp.g_low = vd_sub(g, e_g);
+    pl->pp.a_up = vd_mul(a, vd_set1(1.0 + 8.0 * ELLIPSOID_LANES_U));
     pl->a = a;
-    pl->a_up = vd_mul(a, vd_set1(1.0 + 8.0 * ELLIPSOID_LANES_U));
-    lane_quad_starts(a, b, c, g, &pl->t_lo, &pl->t_hi);
+    lane_quad_starts(a, b, c, g, &pl->pp.t_lo, &pl->pp.t_hi);
 }
-
-/* A crossing refined from a start. */
-typedef struct ellipsoid_root {
-    vd t, err;  /* the refined parameter, |t - exact| <= err */
-    vdd t_dd;   /* t0 - step exactly (t_dd.hi == t) */
-    vm ok;      /* one root within err, and the normal certified */
-    vm enter;   /* Q' < 0 there */
-    vd g[3];    /* the gradient mu_k v_k at the root */
-    vd gg;      /* |g|^2 */
-} ellipsoid_root;
 
 /*
  * One certified Newton step from t0. Bounds (F = max|fh| + |t0| max|d|,
@@ -236,11 +225,13 @@ typedef struct ellipsoid_root {
  *   P    = sum fl(mu_hi vh_k) d_k: E_P <= 6u sum|x_k d_k| + max|d| (L +
  *          24u^2 F) (1 + 2^-40) + ETA;
  *   A    within 5.1u: a_up = A (1 + 8u).
+ * The root's v is the gradient mu_k v_k there, vv its squared length.
  */
-static ALWAYS_INLINE void ellipsoid_lanes_refine(const ellipsoid_prep *ep, const lane_ray *ray,
-                                                 const ellipsoid_plain *pl, vd t0,
-                                                 ellipsoid_root *rt)
+static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ray *ray,
+                                                 const void *plain, vd t0, lane_root *rt)
 {
+    const ellipsoid_prep *ep = prep;
+    const ellipsoid_plain *pl = plain;
     const vd *d = ray->dir;
     const vd u = vd_set1(ELLIPSOID_LANES_U), u2 = vd_set1(ELLIPSOID_LANES_U2);
     vd vh[3], vl[3], x[3], w[3], h_hi[3];
@@ -283,7 +274,7 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const ellipsoid_prep *ep, const
                                   vd_set1(1.0 + 0x1p-40))),
                     vd_set1(ELLIPSOID_LANES_ETA));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->a, pl->a_up, &nt);
+    lane_newton_certify(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt);
     rt->t = nt.t;
     rt->err = nt.err;
     rt->enter = nt.enter;
@@ -291,10 +282,10 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const ellipsoid_prep *ep, const
     vd gg = vd_zero();
     for (int k = 0; k < 3; k++) {
         vd v = vd_add(vh[k], vd_sub(vl[k], vd_mul(nt.step, d[k])));
-        rt->g[k] = vd_mul(vd_set1(ep->mu_hi[k]), v);
-        gg = vd_add(gg, vd_mul(rt->g[k], rt->g[k]));
+        rt->v[k] = vd_mul(vd_set1(ep->mu_hi[k]), v);
+        gg = vd_add(gg, vd_mul(rt->v[k], rt->v[k]));
     }
-    rt->gg = gg;
+    rt->vv = gg;
     vd e_n = vd_mul(vd_add(vd_mul(vd_set1(4.0), nt.rho), vd_mul(vd_mul(vd_set1(4.0), u), vd_abs(nt.step))),
                     d_max);
     vm normal_ok = vd_le(vd_mul(e_n, e_n), vd_mul(vd_set1(ELLIPSOID_LANES_U2), gg));
@@ -304,12 +295,12 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const ellipsoid_prep *ep, const
 /* The record of a refined crossing: the point from the double-double t,
  * the unit normal from the gradient (divided by its length, renormalised),
  * prim -1 and the kind. */
-static ALWAYS_INLINE void ellipsoid_lanes_record(const lane_ray *ray, const ellipsoid_root *rt,
+static ALWAYS_INLINE void ellipsoid_lanes_record(const lane_ray *ray, const lane_root *rt,
                                                  vm exit, lane_hit *h)
 {
-    vd inv = vd_div(vd_set1(1.0), vd_sqrt(rt->gg));
+    vd inv = vd_div(vd_set1(1.0), vd_sqrt(rt->vv));
     for (int k = 0; k < 3; k++)
-        h->normal[k] = vd_mul(rt->g[k], inv);
+        h->normal[k] = vd_mul(rt->v[k], inv);
     lane_unit_newton(h->normal);
     for (int k = 0; k < 3; k++)
         h->normal[k] = vd_add(h->normal[k], vd_zero()); /* never -0 */
@@ -320,10 +311,10 @@ static ALWAYS_INLINE void ellipsoid_lanes_record(const lane_ray *ray, const elli
     h->kind = vd_sel(exit, vd_set1((double)ISECT_EXIT), vd_set1((double)ISECT_ENTER));
 }
 
-/* The crossings' verdicts (prim_lanes.h: lane_pair), as the sphere's. */
+/* The crossings' verdicts (prim_lanes.h: lane_pair_solve). */
 typedef struct ellipsoid_lanes {
     lane_pair pr;
-    ellipsoid_root root[2];
+    lane_root root[2];
 } ellipsoid_lanes;
 
 static ALWAYS_INLINE void ellipsoid_lanes_solve(const ellipsoid_prep *ep, const lane_ray *ray,
@@ -331,23 +322,8 @@ static ALWAYS_INLINE void ellipsoid_lanes_solve(const ellipsoid_prep *ep, const 
 {
     ellipsoid_plain pl;
     ellipsoid_lanes_plain(ep, ray, &pl);
-    ellipsoid_root *lo = &el->root[0], *hi = &el->root[1];
-    ellipsoid_lanes_refine(ep, ray, &pl, pl.t_lo, lo);
-    vm lo_in, lo_out;
-    vm need_hi = lane_pair_lo(pl.cross, vm_and(lo->ok, lo->enter), lo->t, lo->err, ray, first,
-                              &lo_in, &lo_out);
-    vm hi_in = vm_false(), hi_out = vm_false();
-    if (vm_any(vm_andnot(need_hi, pl.slow))) {
-        ellipsoid_lanes_refine(ep, ray, &pl, pl.t_hi, hi);
-        lane_pair_hi(vm_andnot(hi->ok, hi->enter), hi->t, hi->err, ray, &hi_in, &hi_out);
-    } else {
-        *hi = *lo;
-    }
-    vm apart = lane_roots_apart(pl.g_low, pl.a_up, lo->t, lo->err);
-    vm none = ep->degenerate ? vm_true() : vm_false();
-    lane_pair_decide(pl.slow, none, pl.cross, apart, lo_in, lo_out, need_hi, hi_in, hi_out, &el->pr);
-    lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
-    hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
+    lane_pair_solve(ellipsoid_lanes_refine, ep, &pl, NULL, NULL, &pl.pp, ray, first, el->root,
+                    &el->pr);
 }
 
 /* The first hit in [tmin, tmax], for lanes the screen passed. */
@@ -356,14 +332,8 @@ static ALWAYS_INLINE void ellipsoid_lanes_first(const ellipsoid_prep *ep, const 
 {
     ellipsoid_lanes el;
     ellipsoid_lanes_solve(ep, ray, 1, &el);
-    vm exit = vm_andnot(el.pr.in[1], el.pr.in[0]);
-    ellipsoid_root rt;
-    rt.t = vd_sel(exit, el.root[1].t, el.root[0].t);
-    rt.t_dd.hi = vd_sel(exit, el.root[1].t_dd.hi, el.root[0].t_dd.hi);
-    rt.t_dd.lo = vd_sel(exit, el.root[1].t_dd.lo, el.root[0].t_dd.lo);
-    rt.gg = vd_sel(exit, el.root[1].gg, el.root[0].gg);
-    for (int k = 0; k < 3; k++)
-        rt.g[k] = vd_sel(exit, el.root[1].g[k], el.root[0].g[k]);
+    lane_root rt;
+    vm exit = lane_pair_first(&el.pr, el.root, &rt);
     ellipsoid_lanes_record(ray, &rt, exit, h);
     h->found = vm_andnot(vm_or(el.pr.in[0], el.pr.in[1]), el.pr.slow);
     h->slow = el.pr.slow;

@@ -284,6 +284,35 @@ static ALWAYS_INLINE vd lane_clamp_t(vd t, const lane_ray *r)
 }
 
 /*
+ * -num/den for double-doubles num (within e_num) and den (within e_den),
+ * renormalised, den.hi != 0, given inv = fl(1/den.hi): t as a double-double
+ * (dd_mul_inv_dd: tau plus one correction, within 21u^2 |t| of the
+ * quotient of the two double-doubles) and err >= |t.hi - exact|, the
+ * first-order bound |t| (u + 40u^2 + e_den/|den|) + e_num/|den| (plane
+ * lanes' quotient), widened by 2^-9: it holds while e_den <= 2^-20 |den|,
+ * which `ok` says.
+ */
+typedef struct lane_quotient {
+    vdd t;
+    vd  err;
+    vm  ok;
+} lane_quotient;
+
+static ALWAYS_INLINE void lane_quotient_neg(vdd num, vd e_num, vdd den, vd e_den, vd inv,
+                                            lane_quotient *q)
+{
+    const double u = 0x1p-53;
+    vdd minus_num = { vd_neg(num.hi), vd_neg(num.lo) };
+    q->t = dd_mul_inv_dd(minus_num, den, inv);
+    vd inv_abs = vd_mul(vd_abs(inv), vd_set1(1.0 + 0x1p-9));
+    q->err = vd_mul(vd_add(vd_mul(vd_abs(q->t.hi), vd_add(vd_set1(u + 40.0 * u * u),
+                                                            vd_mul(e_den, inv_abs))),
+                           vd_mul(e_num, inv_abs)),
+                    vd_set1(1.0 + 0x1p-9));
+    q->ok = vd_le(e_den, vd_mul(vd_set1(0x1p-20), vd_abs(den.hi)));
+}
+
+/*
  * Starting values for the two roots of A t^2 + 2B t + C from plain
  * coefficients and the plain reduced discriminant G (any sign of A): never
  * -B + sqrt(G) with B > 0 (Haines et al.), q = -(B + sign(B) sqrt(G)) and
@@ -316,18 +345,48 @@ static ALWAYS_INLINE vm lane_root_out(vm ok, vd t, vd err, const lane_ray *r)
     return vm_and(ok, lane_certainly_out(t, err, r));
 }
 
+/* A crossing refined from a start by a shape's refinement step. */
+typedef struct lane_root {
+    vd  t, err;  /* the refined parameter, |t - exact| <= err (when ok) */
+    vdd t_dd;    /* the parameter as a double-double (t0 - step exactly) */
+    vm  ok;      /* one root within err, and what the record needs certified */
+    vm  enter;   /* Q' < 0 there: into the inside */
+    vd  v[3];    /* the shape's vector at the root, for the normal */
+    vd  vv;      /* and a scalar (e.g. its squared length) */
+} lane_root;
+
+/* The lanes of e where m, of f elsewhere. */
+static ALWAYS_INLINE void lane_root_sel(vm m, const lane_root *e, const lane_root *f, lane_root *out)
+{
+    out->t = vd_sel(m, e->t, f->t);
+    out->err = vd_sel(m, e->err, f->err);
+    out->t_dd.hi = vd_sel(m, e->t_dd.hi, f->t_dd.hi);
+    out->t_dd.lo = vd_sel(m, e->t_dd.lo, f->t_dd.lo);
+    out->ok = vm_or(vm_and(m, e->ok), vm_andnot(f->ok, m));
+    out->enter = vm_or(vm_and(m, e->enter), vm_andnot(f->enter, m));
+    for (int k = 0; k < 3; k++)
+        out->v[k] = vd_sel(m, e->v[k], f->v[k]);
+    out->vv = vd_sel(m, e->vv, f->vv);
+}
+
+/* A shape's refinement (one certified Newton step from t0, over its
+ * prepared constants and the ray's plain quantities), and an optional
+ * further condition on a crossing (a cylinder's slab): in / out certain. */
+typedef void (*lane_refine_fn)(const void *prep, const lane_ray *ray, const void *plain, vd t0,
+                               lane_root *rt);
+typedef void (*lane_clip_fn)(const void *data, const lane_root *rt, vm *in, vm *out);
+
 /*
  * The verdicts on a line's two crossings (lower t first), shared by the
- * quadric family's kernels. Per crossing the kernel says whether it is
- * reported (in: a certified root, of the kind expected of it, certainly in
- * [tmin, tmax] and whatever else the shape requires, e.g. a cylinder's
- * slab) or certainly not (out); `beyond` that the lower one lies certainly
- * after tmax (so does the upper one). The upper crossing is refined only
- * where needed (lane_pair_need_hi): for the first hit when the lower one
- * is certainly not reported and not beyond, for all hits unless beyond.
- * decided[i] says in[i] is certain; a crossing decided here is decided the
- * same way, with the same record, in every query, so a scalar all-hits
- * path asks its exact path only for the undecided ones.
+ * quadric family's kernels. A crossing is reported (in) where its root is
+ * certified, of the kind expected of it, certainly in [tmin, tmax] and
+ * within 3.5u|t|, and inside whatever the clip requires; certainly not
+ * (out) where certified and certainly outside either. The upper crossing
+ * is refined only where needed: for the first hit when the lower one is
+ * out but not certainly after tmax, for all hits unless it is. decided[i]
+ * says in[i] is certain; a crossing decided here is decided the same way,
+ * with the same record, in every query, so a scalar all-hits path asks its
+ * exact path only for the undecided ones (hits_merge).
  */
 typedef struct lane_pair {
     vm plain_slow;  /* nothing decided (maybe tangent, out of range, ...) */
@@ -336,27 +395,16 @@ typedef struct lane_pair {
     vm decided[2];  /* in[i] is certain (crossing i absent, out or in) */
 } lane_pair;
 
-static ALWAYS_INLINE vm lane_pair_need_hi(vm cross, vm lo_out, vm lo_beyond, int first)
-{
-    return vm_and(cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
-}
-
-/* The lower crossing's verdicts (ok: certified and of its expected kind)
- * and the lanes that need the upper one. */
-static ALWAYS_INLINE vm lane_pair_lo(vm cross, vm ok, vd t, vd err, const lane_ray *r, int first,
-                                     vm *in, vm *out)
-{
-    *in = lane_root_in(ok, t, err, r);
-    *out = lane_root_out(ok, t, err, r);
-    return lane_pair_need_hi(cross, *out, vm_and(*out, vd_gt(t, r->tmax)), first);
-}
-
-/* The upper crossing's verdicts. */
-static ALWAYS_INLINE void lane_pair_hi(vm ok, vd t, vd err, const lane_ray *r, vm *in, vm *out)
-{
-    *in = lane_root_in(ok, t, err, r);
-    *out = lane_root_out(ok, t, err, r);
-}
+/* What the plain solve knows. */
+typedef struct lane_pair_plain {
+    vm cross;       /* two crossings, certainly (else none, unless slow) */
+    vm slow;        /* undecided: maybe tangent, out of range, ... */
+    vm none;        /* the shape is degenerate: never hit */
+    vm lo_enter;    /* the lower root is the entry (A > 0) */
+    vd g_low;       /* <= the reduced discriminant G = B^2 - AC */
+    vd a_up;        /* >= |A| */
+    vd t_lo, t_hi;  /* starting values, lower root first */
+} lane_pair_plain;
 
 /*
  * Whether the two roots x < y of A t^2 + 2B t + C are more than 16u
@@ -364,8 +412,8 @@ static ALWAYS_INLINE void lane_pair_hi(vm ok, vd t, vd err, const lane_ray *r, v
  * discriminant (y - x = 2 sqrt(G)/|A|), a_up >= |A| and one root known to
  * lie within err of t: if neither root is twice the other, y - x > 32u
  * |t|-ish suffices, and otherwise y - x >= max/2 anyway. Then any values
- * within 4 ulp (8u) of the roots, from this kernel or from an exact path,
- * and clamped into [tmin, tmax] (monotone), keep the roots' order, so the
+ * within 4 ulp (8u) of the roots, from a kernel or from an exact path, and
+ * clamped into [tmin, tmax] (monotone), keep the roots' order, so the
  * scalar call sorts the crossings as the batch assumes.
  */
 static ALWAYS_INLINE vm lane_roots_apart(vd g_low, vd a_up, vd t, vd err)
@@ -374,10 +422,14 @@ static ALWAYS_INLINE vm lane_roots_apart(vd g_low, vd a_up, vd t, vd err)
     return vd_gt(g_low, vd_mul(x, x));
 }
 
-/* cross: two crossings, certainly (else none, unless plain_slow); apart:
- * lane_roots_apart (a crossing pair that is not defers); none: the shape is
- * degenerate (never hit); lo_ and hi_ in / out as above, already including
- * the check of each root's kind. */
+static ALWAYS_INLINE vm lane_pair_need_hi(vm cross, vm lo_out, vm lo_beyond, int first)
+{
+    return vm_and(cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
+}
+
+/* cross: two crossings, certainly; apart: they are far enough apart to
+ * keep their order (a pair that is not defers); lo_ and hi_ in / out as
+ * above (hi_ only where need_hi). */
 static ALWAYS_INLINE void lane_pair_decide(vm plain_slow, vm none, vm cross, vm apart, vm lo_in,
                                            vm lo_out, vm need_hi, vm hi_in, vm hi_out, lane_pair *pr)
 {
@@ -390,6 +442,59 @@ static ALWAYS_INLINE void lane_pair_decide(vm plain_slow, vm none, vm cross, vm 
     pr->in[0] = vm_andnot(vm_and(cross, lo_in), none);
     pr->in[1] = vm_andnot(vm_and(need_hi, hi_in), none);
     pr->slow = vm_or(pr->plain_slow, vm_not(vm_and(pr->decided[0], pr->decided[1])));
+}
+
+/* One crossing's verdicts: its root of the kind `enter` says, in and out. */
+static ALWAYS_INLINE vm lane_pair_verdict(const lane_root *rt, vm enter, lane_clip_fn clip,
+                                          const void *clip_data, const lane_ray *ray, vm *in,
+                                          vm *out)
+{
+    vm kind = vm_or(vm_and(rt->enter, enter), vm_andnot(vm_not(rt->enter), enter));
+    vm ok = vm_and(rt->ok, kind);
+    *in = lane_root_in(ok, rt->t, rt->err, ray);
+    *out = lane_root_out(ok, rt->t, rt->err, ray);
+    vm beyond = vm_and(*out, vd_gt(rt->t, ray->tmax));
+    if (clip != NULL) {
+        vm c_in, c_out;
+        clip(clip_data, rt, &c_in, &c_out);
+        *in = vm_and(*in, c_in);
+        *out = vm_or(*out, vm_and(ok, c_out));
+    }
+    return beyond;
+}
+
+/* The two crossings: the lower refined always, the upper where needed;
+ * reported parameters clamped into [tmin, tmax] (+0, never -0). */
+static ALWAYS_INLINE void lane_pair_solve(lane_refine_fn refine, const void *prep,
+                                          const void *plain, lane_clip_fn clip,
+                                          const void *clip_data, const lane_pair_plain *pl,
+                                          const lane_ray *ray, int first, lane_root root[2],
+                                          lane_pair *pr)
+{
+    lane_root *lo = &root[0], *hi = &root[1];
+    vm lo_in, lo_out, hi_in = vm_false(), hi_out = vm_false();
+    refine(prep, ray, plain, pl->t_lo, lo);
+    vm lo_beyond = lane_pair_verdict(lo, pl->lo_enter, clip, clip_data, ray, &lo_in, &lo_out);
+    vm need_hi = lane_pair_need_hi(pl->cross, lo_out, lo_beyond, first);
+    if (vm_any(vm_andnot(need_hi, pl->slow))) {
+        refine(prep, ray, plain, pl->t_hi, hi);
+        (void)lane_pair_verdict(hi, vm_not(pl->lo_enter), clip, clip_data, ray, &hi_in, &hi_out);
+    } else {
+        *hi = *lo;
+    }
+    vm apart = lane_roots_apart(pl->g_low, pl->a_up, lo->t, lo->err);
+    lane_pair_decide(pl->slow, pl->none, pl->cross, apart, lo_in, lo_out, need_hi, hi_in, hi_out, pr);
+    lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
+    hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
+}
+
+/* The record to report for the first hit: the upper crossing where only
+ * it is in. */
+static ALWAYS_INLINE vm lane_pair_first(const lane_pair *pr, const lane_root root[2], lane_root *rt)
+{
+    vm upper = vm_andnot(pr->in[1], pr->in[0]);
+    lane_root_sel(upper, &root[1], &root[0], rt);
+    return upper;
 }
 
 #endif /* ISECT_PRIM_LANES_H */

@@ -128,24 +128,12 @@ static ALWAYS_INLINE vm sphere_lanes_screen(const sphere_prep *sp, const lane_ra
     return vm_not(vm_and(usable, vd_gt(lhs, rhs)));
 }
 
-/* A crossing refined from a start (sphere_lanes_refine). */
-typedef struct sphere_root {
-    vd t;       /* the refined parameter */
-    vd err;     /* certified: |t - exact| <= err (when ok) */
-    vm ok;      /* the Kantorovich condition held: exactly one root within err */
-    vm enter;   /* that root is an entry (Q' < 0) */
-    vd v[3];    /* f + t d at the root (|v| = r to a few u): the normal's direction */
-} sphere_root;
-
-/* The plain quantities shared by the refinements. */
+/* The plain quantities shared by the refinements (the pair's: cross, slow
+ * = maybe tangent or out of range, the starts of the entry and the exit). */
 typedef struct sphere_plain {
+    lane_pair_plain pp;
     vdd f[3];   /* o - c exactly */
     vd  dd;     /* D = d.d, plain */
-    vd  d_up;   /* D rounded up: >= d.d */
-    vm  cross;  /* two crossings, certainly */
-    vm  slow;   /* maybe tangent, or out of range: the exact path decides */
-    vd  g_low;  /* <= G */
-    vd  t_lo, t_hi; /* starting values for the entry and the exit */
 } sphere_plain;
 
 static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_ray *ray,
@@ -157,7 +145,7 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
     const vd f0 = pl->f[0].hi, f1 = pl->f[1].hi, f2 = pl->f[2].hi;
     vd dd = vd_add(vd_add(vd_mul(d[0], d[0]), vd_mul(d[1], d[1])), vd_mul(d[2], d[2]));
     pl->dd = dd;
-    pl->d_up = vd_mul(dd, vd_set1(1.0 + 4.0 * SPHERE_LANES_U));
+    pl->pp.a_up = vd_mul(dd, vd_set1(1.0 + 4.0 * SPHERE_LANES_U));
     vd b = vd_add(vd_add(vd_mul(f0, d[0]), vd_mul(f1, d[1])), vd_mul(f2, d[2]));
     vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
     vd m1 = vd_sub(vd_mul(f2, d[0]), vd_mul(f0, d[2]));
@@ -176,15 +164,17 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
                     vd_set1(SPHERE_LANES_ETA));
     /* Tangency band: |G| <= eps r^2 D (+ its rounding) cannot be excluded. */
     vd band = vd_add(vd_mul(vd_set1(sp->eps * (1.0 + 0x1p-50)), rr_dd), e_g);
-    pl->cross = vd_gt(g, band);
+    pl->pp.cross = vd_gt(g, band);
     vm miss = vd_lt(g, vd_neg(band));
     vm ok = sp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
-    pl->slow = vm_not(vm_and(ok, vm_or(pl->cross, miss)));
-    pl->g_low = vd_sub(g, e_g);
+    pl->pp.slow = vm_not(vm_and(ok, vm_or(pl->pp.cross, miss)));
+    pl->pp.none = sp->degenerate ? vm_true() : vm_false(); /* r = 0: never hit */
+    pl->pp.lo_enter = vm_true();
+    pl->pp.g_low = vd_sub(g, e_g);
 
     vd c = vd_sub(vd_add(vd_add(vd_mul(f0, f0), vd_mul(f1, f1)), vd_mul(f2, f2)),
                   vd_set1(sp->rr_hi));
-    lane_quad_starts(dd, b, c, g, &pl->t_lo, &pl->t_hi);
+    lane_quad_starts(dd, b, c, g, &pl->pp.t_lo, &pl->pp.t_hi);
 }
 
 /*
@@ -202,9 +192,11 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
  *   within 2 eta/m <= (8/3) eta / (2|P|) of t0 - step; the final rounding
  *   of t adds u|t|.
  */
-static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_ray *ray,
-                                              const sphere_plain *pl, vd t0, sphere_root *rt)
+static ALWAYS_INLINE void sphere_lanes_refine(const void *prep, const lane_ray *ray,
+                                              const void *plain, vd t0, lane_root *rt)
 {
+    const sphere_prep *sp = prep;
+    const sphere_plain *pl = plain;
     const vd *d = ray->dir;
     const vd u = vd_set1(SPHERE_LANES_U), u2 = vd_set1(SPHERE_LANES_U2);
     vd vh[3], vl[3];
@@ -241,7 +233,7 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
     vd e_p = vd_add(vd_mul(vd_mul(vd_set1(4.0), u), vd_add(vd_add(vd_abs(p0), vd_abs(p1)), vd_abs(p2))),
                     vd_mul(vd_set1(1.0 + 2.0 * SPHERE_LANES_U), vd_mul(d_max, l_sum)));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->dd, pl->d_up, &nt);
+    lane_newton_certify(t0, r, e_r, pp, e_p, pl->dd, pl->pp.a_up, &nt);
     /* v = f + (t0 - step) d is then within rho |d| of the vector to the
      * exact hit: the normal is certified when that is below u r (a grazing
      * ray's is not: it defers). */
@@ -251,6 +243,8 @@ static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_
     rt->err = nt.err;
     rt->t = nt.t;
     rt->enter = nt.enter;
+    rt->t_dd.hi = nt.t;
+    rt->t_dd.lo = rt->vv = vd_zero();
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
 }
@@ -284,14 +278,10 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
     h->kind = vd_sel(exit, vd_set1((double)ISECT_EXIT), vd_set1((double)ISECT_ENTER));
 }
 
-/*
- * The crossings' verdicts (prim_lanes.h: lane_pair): the entry is refined
- * always, the exit where lane_pair_need_hi says. Each must be the root its
- * kind says (the entry with Q' < 0).
- */
+/* The crossings' verdicts (prim_lanes.h: lane_pair_solve). */
 typedef struct sphere_lanes {
     lane_pair pr;
-    sphere_root root[2];
+    lane_root root[2];
 } sphere_lanes;
 
 static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_ray *ray, int first,
@@ -299,24 +289,7 @@ static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_r
 {
     sphere_plain pl;
     sphere_lanes_plain(sp, ray, &pl);
-    sphere_root *lo = &sl->root[0], *hi = &sl->root[1];
-    sphere_lanes_refine(sp, ray, &pl, pl.t_lo, lo);
-    vm lo_in, lo_out;
-    vm need_hi = lane_pair_lo(pl.cross, vm_and(lo->ok, lo->enter), lo->t, lo->err, ray, first,
-                              &lo_in, &lo_out);
-    vm hi_in = vm_false(), hi_out = vm_false();
-    if (vm_any(vm_andnot(need_hi, pl.slow))) {
-        sphere_lanes_refine(sp, ray, &pl, pl.t_hi, hi);
-        lane_pair_hi(vm_andnot(hi->ok, hi->enter), hi->t, hi->err, ray, &hi_in, &hi_out);
-    } else {
-        *hi = *lo;
-    }
-    vm apart = lane_roots_apart(pl.g_low, pl.d_up, lo->t, lo->err);
-    vm none = sp->degenerate ? vm_true() : vm_false(); /* r = 0: never hit */
-    lane_pair_decide(pl.slow, none, pl.cross, apart, lo_in, lo_out, need_hi, hi_in, hi_out, &sl->pr);
-    /* reported parameters stay inside [tmin, tmax] (+0, never -0) */
-    lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
-    hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
+    lane_pair_solve(sphere_lanes_refine, sp, &pl, NULL, NULL, &pl.pp, ray, first, sl->root, &sl->pr);
 }
 
 /* The first hit in [tmin, tmax] (lane form of the dispatcher's first-hit
@@ -325,12 +298,9 @@ static ALWAYS_INLINE void sphere_lanes_first(const sphere_prep *sp, const lane_r
 {
     sphere_lanes sl;
     sphere_lanes_solve(sp, ray, 1, &sl);
-    vm exit = vm_andnot(sl.pr.in[1], sl.pr.in[0]);
-    vd t = vd_sel(exit, sl.root[1].t, sl.root[0].t);
-    vd v[3];
-    for (int k = 0; k < 3; k++)
-        v[k] = vd_sel(exit, sl.root[1].v[k], sl.root[0].v[k]);
-    sphere_lanes_record(sp, ray, t, v, exit, h);
+    lane_root rt;
+    vm exit = lane_pair_first(&sl.pr, sl.root, &rt);
+    sphere_lanes_record(sp, ray, rt.t, rt.v, exit, h);
     h->found = vm_andnot(vm_or(sl.pr.in[0], sl.pr.in[1]), sl.pr.slow);
     h->slow = sl.pr.slow;
 }
