@@ -82,6 +82,7 @@ typedef struct test_shape {
     double      numbers[16];
     isect_xform xform;
     double      center[3], size;
+    isect_opts  opts;  /* the options of every query */
 } test_shape;
 
 static void shape_plane(test_shape *ts, const char *name, double nx, double ny, double nz,
@@ -132,6 +133,28 @@ static void shape_ellipsoid(test_shape *ts, const char *name, const double c[3],
     ts->shape.data = ts->numbers;
 }
 
+static void shape_cylinder(test_shape *ts, const char *name, int32_t type, const double p[3],
+                           const double q[3], double r, int32_t flags)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->shape.type = type;
+    ts->shape.flags = flags;
+    ts->shape.data = ts->numbers;
+    for (int k = 0; k < 3; k++) {
+        ts->numbers[k] = p[k];
+        ts->numbers[3 + k] = q[k];
+    }
+    ts->numbers[6] = r;
+    double len = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double a = type == ISECT_CYLINDER ? q[k] - p[k] : q[k];
+        ts->center[k] = type == ISECT_CYLINDER ? 0.5 * (p[k] + q[k]) : p[k];
+        len += a * a;
+    }
+    ts->size = r + (type == ISECT_CYLINDER ? 0.5 * sqrt(len) : 2.0 * r);
+}
+
 /* Puts ts under the object-to-world matrix m; the centre and size for
  * aiming become those of its world image (surface_point maps its
  * object-space points by m). */
@@ -167,6 +190,28 @@ static void surface_point(const test_shape *ts, double p[3])
         for (int k = 0; k < 3; k++)
             p[k] = ts->numbers[k] + ts->numbers[3 + k] * d[k];
         break;
+    case ISECT_CYLINDER:
+    case ISECT_CYLINDER_INF: { /* on the side, or (capped) on a cap, or on a rim */
+        const double *p0 = ts->numbers, r = ts->numbers[6];
+        double a[3], e[3], len = 0.0, s = 0.5 * (rng_unit() + 1.0), rho = r;
+        for (int k = 0; k < 3; k++)
+            a[k] = ts->shape.type == ISECT_CYLINDER ? ts->numbers[3 + k] - p0[k] : ts->numbers[3 + k];
+        for (int k = 0; k < 3; k++) { /* e = unit(d x a), perpendicular to the axis */
+            e[k] = d[(k + 1) % 3] * a[(k + 2) % 3] - d[(k + 2) % 3] * a[(k + 1) % 3];
+            len += e[k] * e[k];
+        }
+        len = sqrt(len);
+        switch (rng_next() % 4) {
+        case 0: s = rng_next() % 2; rho = r * 0.5 * (rng_unit() + 1.0); break; /* a cap */
+        case 1: s = rng_next() % 2; break;                                    /* a rim */
+        default: break;
+        }
+        if (ts->shape.type == ISECT_CYLINDER_INF)
+            s = 2.0 * rng_unit();
+        for (int k = 0; k < 3; k++)
+            p[k] = p0[k] + s * a[k] + rho * e[k] / len;
+        break;
+    }
     default:
         for (int k = 0; k < 3; k++)
             p[k] = ts->center[k] + ts->size * d[k];
@@ -237,7 +282,7 @@ static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
     case INTERVAL: { /* a crossing near tmin or tmax */
         make_ray(ts, RANDOM, r);
         isect_hit h[4];
-        int n = isect_intersect(&ts->shape, r, NULL, h, 4);
+        int n = isect_intersect(&ts->shape, r, &ts->opts, h, 4);
         if (n > 0) {
             double t = h[rng_next() % (uint64_t)(n < 4 ? n : 4)].t;
             int k = (int)(rng_next() % 9) - 4;
@@ -265,10 +310,11 @@ static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
 
 /* The record isect_intersect_batch must write for ray r: the first hit of
  * the scalar call, or MISS / INVALID as isect.h defines them. */
-static void scalar_record(const isect_shape *s, const isect_ray *r, isect_hit *out)
+static void scalar_record(const isect_shape *s, const isect_ray *r, const isect_opts *opts,
+                          isect_hit *out)
 {
     isect_hit h[8];
-    int n = isect_intersect(s, r, NULL, h, 8);
+    int n = isect_intersect(s, r, opts, h, 8);
     if (n > 0) {
         *out = h[0];
         return;
@@ -304,7 +350,7 @@ static void test_shape_rays(const test_shape *ts, int64_t n)
     }
     for (int64_t i = 0; i < n; i++) {
         make_ray(ts, (enum ray_class)(i % CLASSES), &rays[i]);
-        scalar_record(&ts->shape, &rays[i], &want[i]);
+        scalar_record(&ts->shape, &rays[i], &ts->opts, &want[i]);
     }
     int64_t want_hits = 0;
     for (int64_t i = 0; i < n; i++)
@@ -312,7 +358,7 @@ static void test_shape_rays(const test_shape *ts, int64_t n)
     for (int lv = 0; lv < 4; lv++) {
         setenv("ISECT_SIMD", levels[lv], 1);
         memset(got, 0xA5, (size_t)n * sizeof *got);
-        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, NULL, got);
+        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, &ts->opts, got);
         CHECK_EQ_INT(hits, want_hits);
         int64_t bad = 0;
         for (int64_t i = 0; i < n; i++) {
@@ -348,7 +394,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 1000000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 15 };
+    enum { SHAPES = 31 };
     test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -381,6 +427,46 @@ int main(int argc, char **argv)
     static const double e_flat[3] = { 1.0, 1e-20, 2.0 }, e_long[3] = { 1e6, 1.0, 1.0 };
     shape_ellipsoid(&shapes[13], "flat ellipsoid", e_c[0], e_flat);
     shape_ellipsoid(&shapes[14], "long ellipsoid", e_c[4], e_long);
+    static const double c_p[6][3] = { { -0.3, -0.6, -0.9 }, { -0.31, -0.57, -0.93 },
+                                      { 1e6, 2e6, -3e6 }, { -1e9, 2e9, 0.5 },
+                                      { 1e-150, 2e-150, -1e-150 }, { 0.1, 0.2, 0.3 } };
+    static const double c_q[6][3] = { { 0.3, 0.6, 0.9 }, { 0.61, 0.97, 0.83 },
+                                      { 1e6 + 3e-3, 2e6 + 1e-3, -3e6 - 2e-3 }, { -1e9 + 3e8, 2e9, 5e8 },
+                                      { 3e-150, 2e-150, -1e-150 }, { 100.1, 0.2, 0.3 } };
+    static const double c_r[6] = { 0.6, 0.37, 1e-3, 2e8, 1e-151, 0.25 };
+    static const char *const c_names[2][6] = {
+        { "capped cylinder", "capped cylinder 2", "small far capped cylinder", "huge capped cylinder",
+          "tiny capped cylinder", "long capped cylinder" },
+        { "open cylinder", "open cylinder 2", "small far open cylinder", "huge open cylinder",
+          "tiny open cylinder", "long open cylinder" } };
+    for (int i = 0; i < 6; i++) {
+        shape_cylinder(&shapes[15 + i], c_names[0][i], ISECT_CYLINDER, c_p[i], c_q[i], c_r[i], ISECT_CAPPED);
+        shape_cylinder(&shapes[21 + i], c_names[1][i], ISECT_CYLINDER, c_p[i], c_q[i], c_r[i], 0);
+    }
+    static const double i_p[2][3] = { { 0.1, 0.0, 0.0 }, { 1e6, 2e6, -3e6 } };
+    static const double i_a[2][3] = { { 0.2, 0.3, 1.0 }, { 1e-3, 7.0, -2.0 } };
+    shape_cylinder(&shapes[27], "infinite cylinder", ISECT_CYLINDER_INF, i_p[0], i_a[0], 0.7, 0);
+    shape_cylinder(&shapes[28], "thin far infinite cylinder", ISECT_CYLINDER_INF, i_p[1], i_a[1], 1e-2, 0);
+    shape_cylinder(&shapes[29], "transformed capped cylinder", ISECT_CYLINDER, c_p[1], c_q[1], 0.37,
+                   ISECT_CAPPED);
+    shape_transform(&shapes[29], m);
+    shape_cylinder(&shapes[30], "transformed infinite cylinder", ISECT_CYLINDER_INF, i_p[0], i_a[0],
+                   0.7, 0);
+    shape_transform(&shapes[30], m);
+    /* options: the default, and on some shapes eps = 0, a large eps, and
+     * back-face culling (thin surfaces drop EXIT hits) */
+    for (int i = 0; i < SHAPES; i++) {
+        isect_opts o = ISECT_OPTS_INIT;
+        shapes[i].opts = o;
+    }
+    shapes[1].opts.eps = 0.0;
+    shapes[6].opts.flags = ISECT_CULL_BACK;
+    shapes[9].opts.eps = 1e-6;
+    shapes[16].opts.eps = 0.0;
+    shapes[21].opts.flags = ISECT_CULL_BACK;
+    shapes[22].opts.eps = 1e-6;
+    shapes[26].opts.flags = ISECT_CULL_BACK;
+    shapes[28].opts.eps = 0.0;
     for (int i = 0; i < SHAPES; i++)
         test_shape_rays(&shapes[i], n / SHAPES);
     printf("digest %016llx\n", (unsigned long long)digest);

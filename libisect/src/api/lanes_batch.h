@@ -10,6 +10,7 @@
 #include "prim/plane_lanes.h"
 #include "prim/sphere_lanes.h"
 #include "prim/ellipsoid_lanes.h"
+#include "prim/cylinder_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
 #define LANES_CAT(a, b) LANES_CAT2(a, b)
@@ -37,6 +38,15 @@ static ALWAYS_INLINE vm LANES_FN(screen_ellipsoid)(const void *prep, const lane_
 static ALWAYS_INLINE void LANES_FN(kernel_ellipsoid)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     ellipsoid_lanes_first((const ellipsoid_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE vm LANES_FN(screen_cylinder)(const void *prep, const lane_ray *r)
+{
+    return cylinder_lanes_screen((const cylinder_prep *)prep, r);
+}
+static ALWAYS_INLINE void LANES_FN(kernel_cylinder)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    cylinder_lanes_first((const cylinder_prep *)prep, r, h);
 }
 
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
@@ -124,8 +134,12 @@ static ALWAYS_INLINE vm LANES_FN(load_object)(const isect_shape *s, const isect_
 /* The kernel's records for lanes out[] (valid[] the lanes of good rays;
  * lanes beyond `lanes` repeat the last one), the deferred lanes through
  * shape_ray_first, bad rays INVALID; returns the hits among the first
- * `lanes`. */
-static ALWAYS_INLINE int64_t LANES_FN(finish)(lane_hit *h, unsigned valid, int lanes,
+ * `lanes`. cull: a thin surface under ISECT_CULL_BACK, whose EXIT hits the
+ * first-hit query drops; the kernels report the first hit of either kind,
+ * and a thin surface's EXIT is never followed by an ENTER (a plane has one
+ * crossing, an open cylinder's entry comes first), so a found EXIT there is
+ * a miss. */
+static ALWAYS_INLINE int64_t LANES_FN(finish)(lane_hit *h, unsigned valid, int lanes, int cull,
                                               const shape_family *f, const isect_shape *s,
                                               const isect_ray *const world[LANE_W],
                                               isect_hit *const out[LANE_W],
@@ -133,6 +147,8 @@ static ALWAYS_INLINE int64_t LANES_FN(finish)(lane_hit *h, unsigned valid, int l
 {
     unsigned slow = vm_bits(h->slow) & valid;
     h->found = vm_andnot(h->found, h->slow);
+    if (cull)
+        h->found = vm_andnot(h->found, vd_eq(h->kind, vd_set1((double)ISECT_EXIT)));
     if (s->xform != NULL)
         lane_hit_to_world(s->xform, h);
     LANES_FN(store)(h, out);
@@ -165,6 +181,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
 {
     int64_t hit_count = 0, base = 0;
     int64_t full = n - n % LANE_W;
+    int cull = (prm->flags & ISECT_CULL_BACK) && !shape_is_solid(f, s);
     if (screen == NULL) {
         for (int64_t i = 0; i < full; i += LANE_W) {
             const isect_ray *at[LANE_W];
@@ -177,7 +194,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             unsigned valid = vm_bits(LANES_FN(load_object)(s, at, &lr));
             lane_hit h;
             kernel(prep, &lr, &h);
-            hit_count += LANES_FN(finish)(&h, valid, LANE_W, f, s, at, out, prm);
+            hit_count += LANES_FN(finish)(&h, valid, LANE_W, cull, f, s, at, out, prm);
         }
         base = full;
     }
@@ -236,7 +253,7 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
             lane_hit h;
             kernel(prep, &lr, &h);
             int lanes = cand_count - c < LANE_W ? cand_count - c : LANE_W;
-            hit_count += LANES_FN(finish)(&h, LANE_ALL, lanes, f, s, world, out, prm);
+            hit_count += LANES_FN(finish)(&h, LANE_ALL, lanes, cull, f, s, world, out, prm);
         }
     }
     for (int64_t i = full; i < n; i++) {
@@ -268,6 +285,18 @@ static int64_t LANES_FN(batch_ellipsoid)(const shape_family *f, const isect_shap
                           n, prm, closest);
 }
 
+static int64_t LANES_FN(batch_cylinder)(const shape_family *f, const isect_shape *s,
+                                        const isect_ray *rays, int64_t n,
+                                        const isect_params *prm, isect_hit *closest)
+{
+    cylinder_prep cp;
+    int kind = s->type == ISECT_CYLINDER_INF ? CYL_INFINITE
+             : (s->flags & ISECT_CAPPED) ? CYL_CAPPED : CYL_OPEN;
+    cylinder_prepare(s->data, kind, prm->eps, &cp);
+    return LANES_FN(loop)(LANES_FN(screen_cylinder), LANES_FN(kernel_cylinder), &cp, f, s, rays, n,
+                          prm, closest);
+}
+
 static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
                                      const isect_ray *rays, int64_t n, const isect_params *prm,
                                      isect_hit *closest)
@@ -286,6 +315,9 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
         return LANES_FN(batch_sphere);
     case ISECT_ELLIPSOID:
         return LANES_FN(batch_ellipsoid);
+    case ISECT_CYLINDER:
+    case ISECT_CYLINDER_INF:
+        return LANES_FN(batch_cylinder);
     default:
         return NULL;
     }

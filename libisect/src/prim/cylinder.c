@@ -51,6 +51,7 @@
  * point to a few ulps; a cap's normal -+unit(a).
  */
 #include "prim/prim.h"
+#include "prim/cylinder_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
@@ -484,6 +485,45 @@ static int side_hits(cyl_line *ln, int clip_to_caps, const isect_ray *ray,
     return count;
 }
 
+/* ------------------------------------------------------- fast kernels */
+
+typedef int (*cyl_exact_fn)(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                            isect_hit out[ISECT_MAX_HITS]);
+
+/* The fast kernel (cylinder_lanes.h) on one ray, as the batch runs it, then
+ * the exact path for what it leaves undecided (hits_merge). */
+static int kernel_hits(const isect_shape *s, int kind, cyl_exact_fn exact, const isect_ray *ray,
+                       const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
+{
+    cylinder_prep cp;
+    cylinder_prepare(s->data, kind, prm->eps, &cp);
+    if (cp.degenerate)
+        return 0;
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (!cylinder_lanes_screen(&cp, &lr))
+        return 0;
+    cyl_lanes cl;
+    cylinder_lanes_solve(&cp, &lr, 0, &cl);
+    if (cl.pr.plain_slow)
+        return exact(s, ray, prm, out);
+    isect_hit rec[2], found[ISECT_MAX_HITS];
+    int decided[2], in[2], found_count = 0;
+    static const int32_t kinds[2] = { ISECT_ENTER, ISECT_EXIT };
+    for (int i = 0; i < 2; i++) {
+        decided[i] = cl.pr.decided[i];
+        in[i] = cl.pr.in[i];
+        if (decided[i] && in[i]) {
+            lane_hit h;
+            cylinder_lanes_record(&cp, &lr, &cl.root[i], cl.prim[i], i == 1, &h);
+            lane_hit_store(&h, 0, &rec[i]);
+        }
+    }
+    if (!decided[0] || !decided[1])
+        found_count = exact(s, ray, prm, found);
+    return hits_merge(rec, decided, in, kinds, found, found_count, out);
+}
+
 /* ------------------------------------------------------- finite cylinder */
 
 int cylinder_check(const isect_shape *s)
@@ -495,8 +535,9 @@ int cylinder_check(const isect_shape *s)
     return s->data[6] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
-int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                  isect_hit out[ISECT_MAX_HITS])
+/* The exact path of the finite cylinders: certified, else exact. */
+static int cylinder_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                          isect_hit out[ISECT_MAX_HITS])
 {
     cyl_frame fr;
     if (!frame_finite(s->data, ray->org, ray->dir, &fr))
@@ -506,6 +547,13 @@ int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     if (s->flags & ISECT_CAPPED)
         return capped_hits(&ln, ray, out);
     return side_hits(&ln, 1, ray, out);
+}
+
+int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                  isect_hit out[ISECT_MAX_HITS])
+{
+    int kind = (s->flags & ISECT_CAPPED) ? CYL_CAPPED : CYL_OPEN;
+    return kernel_hits(s, kind, cylinder_exact, ray, prm, out);
 }
 
 /* The point's signs: outside the side (C), below cap 0 (-F0), above cap 1
@@ -555,8 +603,8 @@ int cylinder_inf_check(const isect_shape *s)
     return s->data[6] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
-int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                      isect_hit out[ISECT_MAX_HITS])
+static int cylinder_inf_exact(const isect_shape *s, const isect_ray *ray,
+                              const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
 {
     cyl_frame fr;
     if (!frame_infinite(s->data, ray->org, ray->dir, &fr))
@@ -565,6 +613,12 @@ int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_pa
     line_make(&fr, prm->eps, &ln);
     /* parallel: inside or outside along the whole line, no crossing */
     return side_hits(&ln, 0, ray, out);
+}
+
+int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                      isect_hit out[ISECT_MAX_HITS])
+{
+    return kernel_hits(s, CYL_INFINITE, cylinder_inf_exact, ray, prm, out);
 }
 
 int cylinder_inf_contains(const isect_shape *s, const double p[3])
