@@ -65,9 +65,9 @@ enum { CYL_INFINITE, CYL_OPEN, CYL_CAPPED };
 typedef struct cylinder_prep {
     double p[3];                 /* p0, or the infinite cylinder's point */
     double a_hi[3], a_lo[3];     /* the axis times 2^-e */
-    double aa_hi, aa_lo;         /* a.a (within 4u^2) */
+    double aa_hi, aa_lo;         /* a.a (within 8u^2: compensated, a_lo^2 dropped) */
     double rr_hi;                /* r^2, rounded */
-    double rr_aa_hi, rr_aa_lo;   /* r^2 a.a (within 8u^2) */
+    double rr_aa_hi, rr_aa_lo;   /* r^2 a.a (within 12u^2) */
     double cap_hi, cap_lo;       /* (p1 - p0).a = 2^e a.a: F1 = F0 - this */
     double inv_r_aa;             /* 1/(r a.a), rounded */
     double unit_a[3];            /* a/|a|, the normal of the cap at p1 */
@@ -263,8 +263,8 @@ static ALWAYS_INLINE void cyl_lanes_plain(const cylinder_prep *cp, const lane_ra
  *        rounded, vl x a_lo and v's error dropped: within ew = 128u^2 F
  *        (54u^2 F counted) per component;
  *   R  = |wh + wl|^2 - r^2 a.a, as the sphere's residual: E_R <= 32u^2
- *        (|wh|^2 + rr_aa) + 8u^2 rr_aa + 8u (2 W Lw + Lw^2) + 2.01 W ew +
- *        3 ew^2 + u|R| + ETA;
+ *        (|wh|^2 + rr_aa) + 16u^2 rr_aa (its own error) + 8u (2 W Lw +
+ *        Lw^2) + 2.01 W ew + 3 ew^2 + u|R| + ETA;
  *   P  = wh.n: E_P <= W en + (Lw + 3 ew) |n|_1 + 4u sum|wh_k n_k| + ETA.
  * The root's v is w there ((f + t d) x a, |w| = r |a| to a few u).
  */
@@ -309,7 +309,7 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
     vd l_sum = vd_add(vd_add(vd_abs(wl[0]), vd_abs(wl[1])), vd_abs(wl[2]));
     vd rr_aa = vd_set1(cp->rr_aa_hi);
     vd e_r = vd_add(vd_add(vd_mul(vd_mul(vd_set1(32.0), u2), vd_add(sb.hi, rr_aa)),
-                           vd_mul(vd_mul(vd_set1(8.0), u2), rr_aa)),
+                           vd_mul(vd_mul(vd_set1(16.0), u2), rr_aa)),
                     vd_add(vd_add(vd_mul(vd_mul(vd_set1(8.0), u),
                                          vd_add(vd_mul(vd_add(w_sum, w_sum), l_sum), vd_mul(l_sum, l_sum))),
                                   vd_mul(ew, vd_add(vd_mul(vd_set1(2.01), w_sum), vd_mul(vd_set1(3.0), ew)))),
@@ -367,8 +367,8 @@ typedef struct cyl_caps {
  * lane_dot3_dd (12u^2 of sum|x_k y_k|) plus the first-order terms with
  * a's and f's low parts (rounded; f_lo a_lo dropped): within 16u^2
  * sum|x_k a_k| + ETA each. F1 = F0 - (p1 - p0).a, with the prepared value
- * within 4u^2 of itself and the renormalisation's rounding: e_F1 = e_F0 +
- * 8u^2 (|F0| + |cap|). Parallel by the policy when D^2 <= eps^2 |d|^2 a.a:
+ * within 8u^2 of itself and the low parts' rounding: e_F1 = e_F0 + 16u^2
+ * (|F0| + |cap|). Parallel by the policy when D^2 <= eps^2 |d|^2 a.a:
  * certainly not when (|D| - e_D)^2 > eps^2 |d|^2 a.a (1 + 2^-46).
  */
 static ALWAYS_INLINE void cyl_lanes_caps(const cylinder_prep *cp, const lane_ray *ray,
@@ -397,7 +397,7 @@ static ALWAYS_INLINE void cyl_lanes_caps(const cylinder_prep *cp, const lane_ray
     vdd f_b = two_sum(f_a.hi, vd_set1(-cp->cap_hi));
     f_b.lo = vd_add(f_b.lo, vd_sub(f_a.lo, vd_set1(cp->cap_lo)));
     f_b = dd_renorm(f_b);
-    vd e_f1 = vd_add(e_f0, vd_mul(vd_mul(vd_set1(8.0), u2), vd_add(vd_abs(f_a.hi), vd_set1(cp->cap_hi))));
+    vd e_f1 = vd_add(e_f0, vd_mul(vd_mul(vd_set1(16.0), u2), vd_add(vd_abs(f_a.hi), vd_set1(cp->cap_hi))));
 
     vd inv = vd_div(vd_set1(1.0), den.hi);
     lane_quotient_neg(f_a, e_f0, den, e_den, inv, &cc->c[0]);
