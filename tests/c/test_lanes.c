@@ -155,6 +155,18 @@ static void shape_cylinder(test_shape *ts, const char *name, int32_t type, const
     ts->size = r + (type == ISECT_CYLINDER ? 0.5 * sqrt(len) : 2.0 * r);
 }
 
+static void shape_quadric(test_shape *ts, const char *name, const double q[10], const double c[3],
+                          double size)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->shape.type = ISECT_QUADRIC;
+    ts->shape.data = ts->numbers;
+    memcpy(ts->numbers, q, 10 * sizeof *q);
+    memcpy(ts->center, c, sizeof ts->center);
+    ts->size = size;
+}
+
 /* Puts ts under the object-to-world matrix m; the centre and size for
  * aiming become those of its world image (surface_point maps its
  * object-space points by m). */
@@ -210,6 +222,18 @@ static void surface_point(const test_shape *ts, double p[3])
             s = 2.0 * rng_unit();
         for (int k = 0; k < 3; k++)
             p[k] = p0[k] + s * a[k] + rho * e[k] / len;
+        break;
+    }
+    case ISECT_QUADRIC: { /* a crossing of a line through the aiming box */
+        isect_shape object = ts->shape;
+        object.xform = NULL;
+        isect_ray line = { { 0 }, { d[0], d[1], d[2] }, -INFINITY, INFINITY };
+        for (int k = 0; k < 3; k++)
+            line.org[k] = ts->center[k] + 0.5 * ts->size * rng_unit();
+        isect_hit h[4];
+        int n = isect_intersect(&object, &line, NULL, h, 4);
+        for (int k = 0; k < 3; k++)
+            p[k] = n > 0 ? h[rng_next() % (uint64_t)(n < 4 ? n : 4)].point[k] : line.org[k];
         break;
     }
     default:
@@ -394,7 +418,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 1000000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 31 };
+    enum { SHAPES = 38 };
     test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -453,6 +477,22 @@ int main(int argc, char **argv)
     shape_cylinder(&shapes[30], "transformed infinite cylinder", ISECT_CYLINDER_INF, i_p[0], i_a[0],
                    0.7, 0);
     shape_transform(&shapes[30], m);
+    static const double hyperboloid[10] = { 1.0, 2.0, -1.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, -0.5 };
+    static const double cone[10] = { 1.0, 1.0, -1.0, 0.0, 0.0, 0.0, -0.2, -0.4, 0.6, -0.04 };
+    static const double paraboloid[10] = { 1.0, 0.5, 0.0, 0.1, 0.0, 0.0, 0.0, 0.0, -1.0, -0.3 };
+    static const double general[10] = { 1.1, 0.9, 1.3, 0.2, -0.3, 0.1, 0.05, -0.07, 0.11, -1.0 };
+    static const double far_ball[10] = { 1.0, 2.0, 3.0, 0.0, 0.0, 0.0, -2e3, 0.0, 0.0, 1e6 - 1.0 };
+    static const double tiny[10] = { 1e30, 2e30, -1e30, 0.5e30, 0.0, 0.0, 0.0, 0.0, 0.0, -0.5 };
+    static const double origin[3] = { 0.0, 0.0, 0.0 }, ball_c[3] = { 1e3, 0.0, 0.0 };
+    static const double cone_c[3] = { 0.1, 0.2, -0.3 }, tiny_c[3] = { 0.0, 0.0, 0.0 };
+    shape_quadric(&shapes[31], "hyperboloid", hyperboloid, origin, 2.0);
+    shape_quadric(&shapes[32], "cone", cone, cone_c, 2.0);
+    shape_quadric(&shapes[33], "paraboloid", paraboloid, origin, 2.0);
+    shape_quadric(&shapes[34], "general quadric", general, origin, 2.0);
+    shape_quadric(&shapes[35], "far ellipsoid quadric", far_ball, ball_c, 1.0);
+    shape_quadric(&shapes[36], "tiny hyperboloid", tiny, tiny_c, 2e-15);
+    shape_quadric(&shapes[37], "transformed hyperboloid", hyperboloid, origin, 2.0);
+    shape_transform(&shapes[37], m);
     /* options: the default, and on some shapes eps = 0, a large eps, and
      * back-face culling (thin surfaces drop EXIT hits) */
     for (int i = 0; i < SHAPES; i++) {
@@ -467,6 +507,8 @@ int main(int argc, char **argv)
     shapes[22].opts.eps = 1e-6;
     shapes[26].opts.flags = ISECT_CULL_BACK;
     shapes[28].opts.eps = 0.0;
+    shapes[32].opts.eps = 0.0;
+    shapes[34].opts.eps = 1e-6;
     for (int i = 0; i < SHAPES; i++)
         test_shape_rays(&shapes[i], n / SHAPES);
     printf("digest %016llx\n", (unsigned long long)digest);

@@ -11,6 +11,7 @@
 #include "prim/sphere_lanes.h"
 #include "prim/ellipsoid_lanes.h"
 #include "prim/cylinder_lanes.h"
+#include "prim/quadric_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
 #define LANES_CAT(a, b) LANES_CAT2(a, b)
@@ -47,6 +48,15 @@ static ALWAYS_INLINE vm LANES_FN(screen_cylinder)(const void *prep, const lane_r
 static ALWAYS_INLINE void LANES_FN(kernel_cylinder)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     cylinder_lanes_first((const cylinder_prep *)prep, r, h);
+}
+
+static ALWAYS_INLINE vm LANES_FN(screen_quadric)(const void *prep, const lane_ray *r)
+{
+    return quadric_lanes_screen((const quadric_prep *)prep, r);
+}
+static ALWAYS_INLINE void LANES_FN(kernel_quadric)(const void *prep, const lane_ray *r, lane_hit *h)
+{
+    quadric_lanes_first((const quadric_prep *)prep, r, h);
 }
 
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
@@ -297,6 +307,16 @@ static int64_t LANES_FN(batch_cylinder)(const shape_family *f, const isect_shape
                           prm, closest);
 }
 
+static int64_t LANES_FN(batch_quadric)(const shape_family *f, const isect_shape *s,
+                                       const isect_ray *rays, int64_t n, const isect_params *prm,
+                                       isect_hit *closest)
+{
+    quadric_prep qp;
+    quadric_prepare(s->data, prm->eps, &qp);
+    return LANES_FN(loop)(LANES_FN(screen_quadric), LANES_FN(kernel_quadric), &qp, f, s, rays, n,
+                          prm, closest);
+}
+
 static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
                                      const isect_ray *rays, int64_t n, const isect_params *prm,
                                      isect_hit *closest)
@@ -318,6 +338,8 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
     case ISECT_CYLINDER:
     case ISECT_CYLINDER_INF:
         return LANES_FN(batch_cylinder);
+    case ISECT_QUADRIC:
+        return LANES_FN(batch_quadric);
     default:
         return NULL;
     }

@@ -328,6 +328,7 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
     rt->err = nt.err;
     rt->enter = nt.enter;
     rt->t_dd = two_sum(t0, vd_neg(nt.step));
+    rt->rho = nt.rho;
     rt->vv = vd_zero();
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_add(wh[k], vd_sub(wl[k], vd_mul(nt.step, n[k])));
@@ -417,6 +418,7 @@ static ALWAYS_INLINE void cyl_cap_root(const lane_quotient *q, vm ok, lane_root 
     rt->t = q->t.hi;
     rt->err = q->err;
     rt->t_dd = q->t;
+    rt->rho = q->err;
     rt->ok = ok;
     rt->enter = vm_false();
     rt->v[0] = rt->v[1] = rt->v[2] = rt->vv = vd_zero();

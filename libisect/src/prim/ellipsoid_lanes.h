@@ -279,6 +279,7 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ra
     rt->err = nt.err;
     rt->enter = nt.enter;
     rt->t_dd = two_sum(t0, vd_neg(nt.step));
+    rt->rho = nt.rho;
     vd gg = vd_zero();
     for (int k = 0; k < 3; k++) {
         vd v = vd_add(vh[k], vd_sub(vl[k], vd_mul(nt.step, d[k])));

@@ -349,6 +349,7 @@ static ALWAYS_INLINE vm lane_root_out(vm ok, vd t, vd err, const lane_ray *r)
 typedef struct lane_root {
     vd  t, err;  /* the refined parameter, |t - exact| <= err (when ok) */
     vdd t_dd;    /* the parameter as a double-double (t0 - step exactly) */
+    vd  rho;     /* |exact - t_dd| <= rho (when ok) */
     vm  ok;      /* one root within err, and what the record needs certified */
     vm  enter;   /* Q' < 0 there: into the inside */
     vd  v[3];    /* the shape's vector at the root, for the normal */
@@ -362,6 +363,7 @@ static ALWAYS_INLINE void lane_root_sel(vm m, const lane_root *e, const lane_roo
     out->err = vd_sel(m, e->err, f->err);
     out->t_dd.hi = vd_sel(m, e->t_dd.hi, f->t_dd.hi);
     out->t_dd.lo = vd_sel(m, e->t_dd.lo, f->t_dd.lo);
+    out->rho = vd_sel(m, e->rho, f->rho);
     out->ok = vm_or(vm_and(m, e->ok), vm_andnot(f->ok, m));
     out->enter = vm_or(vm_and(m, e->enter), vm_andnot(f->enter, m));
     for (int k = 0; k < 3; k++)

@@ -33,6 +33,7 @@
  * are those of the coefficients as given.
  */
 #include "prim/prim.h"
+#include "prim/quadric_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
@@ -206,11 +207,10 @@ int quadric_check(const isect_shape *s)
     return all_finite(s->data, 10) ? ISECT_OK : ISECT_E_NONFINITE;
 }
 
-int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                 isect_hit out[ISECT_MAX_HITS])
+/* The exact path: certified from double-doubles, else exact. */
+static int quadric_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                         isect_hit out[ISECT_MAX_HITS])
 {
-    if (all_zero(s->data))
-        return 0;
     int e_pos = position_exponent(s->data, ray->org);
     int e_dir = pow2_exponent(max_abs3(ray->dir));
     int t_shift = e_pos - e_dir;
@@ -242,6 +242,38 @@ int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
         hit_set_dd(&out[kept++], ray, t_hi, t_lo, normal, -1, kind);
     }
     return kept;
+}
+
+/* The fast kernel (quadric_lanes.h) on one ray, as the batch runs it, then
+ * the exact path for what it leaves undecided. */
+int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                 isect_hit out[ISECT_MAX_HITS])
+{
+    if (all_zero(s->data))
+        return 0;
+    quadric_prep qp;
+    quadric_prepare(s->data, prm->eps, &qp);
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    quadric_lanes ql;
+    quadric_lanes_solve(&qp, &lr, 0, &ql);
+    if (ql.pr.plain_slow)
+        return quadric_exact(s, ray, prm, out);
+    isect_hit rec[2], exact[ISECT_MAX_HITS];
+    int decided[2], in[2], exact_count = 0;
+    int32_t kind[2] = { ql.lo_enter ? ISECT_ENTER : ISECT_EXIT, ql.lo_enter ? ISECT_EXIT : ISECT_ENTER };
+    for (int i = 0; i < 2; i++) {
+        decided[i] = ql.pr.decided[i];
+        in[i] = ql.pr.in[i];
+        if (decided[i] && in[i]) {
+            lane_hit h;
+            decided[i] = quadric_lanes_record(&qp, &lr, &ql.root[i], &h); /* else exact */
+            lane_hit_store(&h, 0, &rec[i]);
+        }
+    }
+    if (!decided[0] || !decided[1])
+        exact_count = quadric_exact(s, ray, prm, exact);
+    return hits_merge(rec, decided, in, kind, exact, exact_count, out);
 }
 
 /* Q(x) (scaled coordinates) certified as a double-double, exactly where

@@ -245,6 +245,7 @@ static ALWAYS_INLINE void sphere_lanes_refine(const void *prep, const lane_ray *
     rt->enter = nt.enter;
     rt->t_dd.hi = nt.t;
     rt->t_dd.lo = rt->vv = vd_zero();
+    rt->rho = nt.err;
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
 }
