@@ -23,42 +23,6 @@
 typedef vm (*lanes_screen)(const void *prep, const lane_ray *r);
 typedef void (*lanes_kernel)(const void *prep, const lane_ray *r, lane_hit *h);
 
-static ALWAYS_INLINE vm LANES_FN(screen_sphere)(const void *prep, const lane_ray *r)
-{
-    return sphere_lanes_screen((const sphere_prep *)prep, r);
-}
-static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_ray *r, lane_hit *h)
-{
-    sphere_lanes_first((const sphere_prep *)prep, r, h);
-}
-
-static ALWAYS_INLINE vm LANES_FN(screen_ellipsoid)(const void *prep, const lane_ray *r)
-{
-    return ellipsoid_lanes_screen((const ellipsoid_prep *)prep, r);
-}
-static ALWAYS_INLINE void LANES_FN(kernel_ellipsoid)(const void *prep, const lane_ray *r, lane_hit *h)
-{
-    ellipsoid_lanes_first((const ellipsoid_prep *)prep, r, h);
-}
-
-static ALWAYS_INLINE vm LANES_FN(screen_cylinder)(const void *prep, const lane_ray *r)
-{
-    return cylinder_lanes_screen((const cylinder_prep *)prep, r);
-}
-static ALWAYS_INLINE void LANES_FN(kernel_cylinder)(const void *prep, const lane_ray *r, lane_hit *h)
-{
-    cylinder_lanes_first((const cylinder_prep *)prep, r, h);
-}
-
-static ALWAYS_INLINE vm LANES_FN(screen_quadric)(const void *prep, const lane_ray *r)
-{
-    return quadric_lanes_screen((const quadric_prep *)prep, r);
-}
-static ALWAYS_INLINE void LANES_FN(kernel_quadric)(const void *prep, const lane_ray *r, lane_hit *h)
-{
-    quadric_lanes_first((const quadric_prep *)prep, r, h);
-}
-
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
 {
     plane_lanes_first((const plane_prep *)prep, r, h);
@@ -275,47 +239,36 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
     return hit_count;
 }
 
-static int64_t LANES_FN(batch_sphere)(const shape_family *f, const isect_shape *s,
-                                      const isect_ray *rays, int64_t n, const isect_params *prm,
-                                      isect_hit *closest)
-{
-    sphere_prep sp;
-    sphere_prepare(s->data, prm->eps, &sp);
-    return LANES_FN(loop)(LANES_FN(screen_sphere), LANES_FN(kernel_sphere), &sp, f, s, rays, n,
-                          prm, closest);
-}
+/*
+ * A shape with a screen: X_lanes_screen and X_lanes_first over its
+ * constants (type PREP_T), prepared once per batch by the statement
+ * PREPARE (of s, prm, prep), run by the loop.
+ */
+#define LANES_SHAPE(X, PREP_T, PREPARE)                                                        \
+    static ALWAYS_INLINE vm LANES_FN(screen_##X)(const void *prep, const lane_ray *r)         \
+    {                                                                                          \
+        return X##_lanes_screen((const PREP_T *)prep, r);                                      \
+    }                                                                                          \
+    static ALWAYS_INLINE void LANES_FN(kernel_##X)(const void *prep, const lane_ray *r,       \
+                                                   lane_hit *h)                                \
+    {                                                                                          \
+        X##_lanes_first((const PREP_T *)prep, r, h);                                           \
+    }                                                                                          \
+    static int64_t LANES_FN(batch_##X)(const shape_family *f, const isect_shape *s,           \
+                                       const isect_ray *rays, int64_t n,                       \
+                                       const isect_params *prm, isect_hit *closest)            \
+    {                                                                                          \
+        PREP_T prep;                                                                           \
+        PREPARE;                                                                               \
+        return LANES_FN(loop)(LANES_FN(screen_##X), LANES_FN(kernel_##X), &prep, f, s, rays,   \
+                              n, prm, closest);                                                \
+    }
 
-static int64_t LANES_FN(batch_ellipsoid)(const shape_family *f, const isect_shape *s,
-                                         const isect_ray *rays, int64_t n,
-                                         const isect_params *prm, isect_hit *closest)
-{
-    ellipsoid_prep ep;
-    ellipsoid_prepare(s->data, prm->eps, &ep);
-    return LANES_FN(loop)(LANES_FN(screen_ellipsoid), LANES_FN(kernel_ellipsoid), &ep, f, s, rays,
-                          n, prm, closest);
-}
-
-static int64_t LANES_FN(batch_cylinder)(const shape_family *f, const isect_shape *s,
-                                        const isect_ray *rays, int64_t n,
-                                        const isect_params *prm, isect_hit *closest)
-{
-    cylinder_prep cp;
-    int kind = s->type == ISECT_CYLINDER_INF ? CYL_INFINITE
-             : (s->flags & ISECT_CAPPED) ? CYL_CAPPED : CYL_OPEN;
-    cylinder_prepare(s->data, kind, prm->eps, &cp);
-    return LANES_FN(loop)(LANES_FN(screen_cylinder), LANES_FN(kernel_cylinder), &cp, f, s, rays, n,
-                          prm, closest);
-}
-
-static int64_t LANES_FN(batch_quadric)(const shape_family *f, const isect_shape *s,
-                                       const isect_ray *rays, int64_t n, const isect_params *prm,
-                                       isect_hit *closest)
-{
-    quadric_prep qp;
-    quadric_prepare(s->data, prm->eps, &qp);
-    return LANES_FN(loop)(LANES_FN(screen_quadric), LANES_FN(kernel_quadric), &qp, f, s, rays, n,
-                          prm, closest);
-}
+LANES_SHAPE(sphere, sphere_prep, sphere_prepare(s->data, prm->eps, &prep))
+LANES_SHAPE(ellipsoid, ellipsoid_prep, ellipsoid_prepare(s->data, prm->eps, &prep))
+LANES_SHAPE(cylinder, cylinder_prep,
+            cylinder_prepare(s->data, cylinder_kind(s->type, s->flags), prm->eps, &prep))
+LANES_SHAPE(quadric, quadric_prep, quadric_prepare(s->data, prm->eps, &prep))
 
 static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
                                      const isect_ray *rays, int64_t n, const isect_params *prm,

@@ -487,16 +487,22 @@ static int side_hits(cyl_line *ln, int clip_to_caps, const isect_ray *ray,
 
 /* ------------------------------------------------------- fast kernels */
 
-typedef int (*cyl_exact_fn)(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                            isect_hit out[ISECT_MAX_HITS]);
+/* Crossing i of the solved kernel (lane_pair_hits). */
+static int kernel_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                         lane_hit *h)
+{
+    const cyl_lanes *cl = solved;
+    cylinder_lanes_record(prep, ray, &cl->root[i], cl->prim[i], i == 1, h);
+    return 1;
+}
 
 /* The fast kernel (cylinder_lanes.h) on one ray, as the batch runs it, then
- * the exact path for what it leaves undecided (hits_merge). */
-static int kernel_hits(const isect_shape *s, int kind, cyl_exact_fn exact, const isect_ray *ray,
+ * the exact path for what it leaves undecided. */
+static int kernel_hits(const isect_shape *s, lane_exact_fn exact, const isect_ray *ray,
                        const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
 {
     cylinder_prep cp;
-    cylinder_prepare(s->data, kind, prm->eps, &cp);
+    cylinder_prepare(s->data, cylinder_kind(s->type, s->flags), prm->eps, &cp);
     if (cp.degenerate)
         return 0;
     lane_ray lr;
@@ -505,23 +511,8 @@ static int kernel_hits(const isect_shape *s, int kind, cyl_exact_fn exact, const
         return 0;
     cyl_lanes cl;
     cylinder_lanes_solve(&cp, &lr, 0, &cl);
-    if (cl.pr.plain_slow)
-        return exact(s, ray, prm, out);
-    isect_hit rec[2], found[ISECT_MAX_HITS];
-    int decided[2], in[2], found_count = 0;
     static const int32_t kinds[2] = { ISECT_ENTER, ISECT_EXIT };
-    for (int i = 0; i < 2; i++) {
-        decided[i] = cl.pr.decided[i];
-        in[i] = cl.pr.in[i];
-        if (decided[i] && in[i]) {
-            lane_hit h;
-            cylinder_lanes_record(&cp, &lr, &cl.root[i], cl.prim[i], i == 1, &h);
-            lane_hit_store(&h, 0, &rec[i]);
-        }
-    }
-    if (!decided[0] || !decided[1])
-        found_count = exact(s, ray, prm, found);
-    return hits_merge(rec, decided, in, kinds, found, found_count, out);
+    return lane_pair_hits(&cl.pr, kinds, kernel_record, &cp, &lr, &cl, exact, s, ray, prm, out);
 }
 
 /* ------------------------------------------------------- finite cylinder */
@@ -552,8 +543,7 @@ static int cylinder_exact(const isect_shape *s, const isect_ray *ray, const isec
 int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                   isect_hit out[ISECT_MAX_HITS])
 {
-    int kind = (s->flags & ISECT_CAPPED) ? CYL_CAPPED : CYL_OPEN;
-    return kernel_hits(s, kind, cylinder_exact, ray, prm, out);
+    return kernel_hits(s, cylinder_exact, ray, prm, out);
 }
 
 /* The point's signs: outside the side (C), below cap 0 (-F0), above cap 1
@@ -618,7 +608,7 @@ static int cylinder_inf_exact(const isect_shape *s, const isect_ray *ray,
 int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                       isect_hit out[ISECT_MAX_HITS])
 {
-    return kernel_hits(s, CYL_INFINITE, cylinder_inf_exact, ray, prm, out);
+    return kernel_hits(s, cylinder_inf_exact, ray, prm, out);
 }
 
 int cylinder_inf_contains(const isect_shape *s, const double p[3])

@@ -61,6 +61,12 @@
 
 enum { CYL_INFINITE, CYL_OPEN, CYL_CAPPED };
 
+/* The kind of an ISECT_CYLINDER or ISECT_CYLINDER_INF shape. */
+static inline int cylinder_kind(int32_t type, int32_t flags)
+{
+    return type == ISECT_CYLINDER_INF ? CYL_INFINITE : (flags & ISECT_CAPPED) ? CYL_CAPPED : CYL_OPEN;
+}
+
 /* The cylinder's constants, prepared once per call or batch. */
 typedef struct cylinder_prep {
     double p[3];                 /* p0, or the infinite cylinder's point */
@@ -276,12 +282,7 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
     const vd *d = ray->dir, *n = pl->n;
     const vd u = vd_set1(CYL_LANES_U), u2 = vd_set1(CYL_LANES_U2);
     vd vh[3], vl[3], wh[3], wl[3];
-    for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(t0, d[k]);
-        vdd sum = two_sum(pl->f[k].hi, p.hi);
-        vh[k] = sum.hi;
-        vl[k] = vd_add(sum.lo, vd_add(pl->f[k].lo, p.lo));
-    }
+    lane_offset_at(pl->f, t0, d, vh, vl);
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         vd ai = vd_set1(cp->a_hi[i]), aj = vd_set1(cp->a_hi[j]);
@@ -292,28 +293,16 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
         vd low_a = vd_sub(vd_mul(vh[i], vd_set1(cp->a_lo[j])), vd_mul(vh[j], vd_set1(cp->a_lo[i])));
         wl[k] = vd_add(vd_add(s.lo, vd_sub(p1.lo, p2.lo)), vd_add(low_v, low_a));
     }
-    vdd g0 = two_prod(wh[0], wh[0]), g1 = two_prod(wh[1], wh[1]), g2 = two_prod(wh[2], wh[2]);
-    vdd sa = two_sum(g0.hi, g1.hi);
-    vdd sb = two_sum(sa.hi, g2.hi);
-    vdd sc = two_sum(sb.hi, vd_set1(-cp->rr_aa_hi));
-    vd cross = vd_add(vd_add(vd_mul(wh[0], wl[0]), vd_mul(wh[1], wl[1])), vd_mul(wh[2], wl[2]));
-    vd sq_lo = vd_add(vd_add(vd_mul(wl[0], wl[0]), vd_mul(wl[1], wl[1])), vd_mul(wl[2], wl[2]));
-    vd lows = vd_add(vd_add(vd_add(sa.lo, sb.lo), vd_add(sc.lo, vd_set1(-cp->rr_aa_lo))),
-                     vd_add(vd_add(vd_add(g0.lo, g1.lo), g2.lo), vd_add(vd_add(cross, cross), sq_lo)));
-    vd r = vd_add(sc.hi, lows);
-
+    lane_sq3 sq;
+    lane_sq3_minus(wh, wl, cp->rr_aa_hi, cp->rr_aa_lo, &sq);
+    vd r = sq.r, w_sum = sq.v_sum, l_sum = sq.l_sum;
     vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vd big_f = vd_add(lane_max_abs3(pl->f[0].hi, pl->f[1].hi, pl->f[2].hi), vd_mul(vd_abs(t0), d_max));
     vd ew = vd_add(vd_mul(vd_mul(vd_set1(128.0), u2), big_f), vd_set1(CYL_LANES_ETA));
-    vd w_sum = vd_add(vd_add(vd_abs(wh[0]), vd_abs(wh[1])), vd_abs(wh[2]));
-    vd l_sum = vd_add(vd_add(vd_abs(wl[0]), vd_abs(wl[1])), vd_abs(wl[2]));
     vd rr_aa = vd_set1(cp->rr_aa_hi);
-    vd e_r = vd_add(vd_add(vd_mul(vd_mul(vd_set1(32.0), u2), vd_add(sb.hi, rr_aa)),
-                           vd_mul(vd_mul(vd_set1(16.0), u2), rr_aa)),
-                    vd_add(vd_add(vd_mul(vd_mul(vd_set1(8.0), u),
-                                         vd_add(vd_mul(vd_add(w_sum, w_sum), l_sum), vd_mul(l_sum, l_sum))),
-                                  vd_mul(ew, vd_add(vd_mul(vd_set1(2.01), w_sum), vd_mul(vd_set1(3.0), ew)))),
-                           vd_add(vd_mul(u, vd_abs(r)), vd_set1(CYL_LANES_ETA))));
+    vd e_r = vd_add(vd_add(sq.e, vd_mul(vd_mul(vd_set1(16.0), u2), rr_aa)),
+                    vd_add(vd_mul(ew, vd_add(vd_mul(vd_set1(2.01), w_sum), vd_mul(vd_set1(3.0), ew))),
+                           vd_set1(CYL_LANES_ETA)));
 
     vd q0 = vd_mul(wh[0], n[0]), q1 = vd_mul(wh[1], n[1]), q2 = vd_mul(wh[2], n[2]);
     vd pp = vd_add(vd_add(q0, q1), q2);
@@ -323,13 +312,7 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
                                   vd_add(vd_add(vd_abs(q0), vd_abs(q1)), vd_abs(q2))),
                            vd_set1(CYL_LANES_ETA)));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt);
-    rt->t = nt.t;
-    rt->err = nt.err;
-    rt->enter = nt.enter;
-    rt->t_dd = two_sum(t0, vd_neg(nt.step));
-    rt->rho = nt.rho;
-    rt->vv = vd_zero();
+    lane_root_newton(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt, rt);
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_add(wh[k], vd_sub(wl[k], vd_mul(nt.step, n[k])));
     /* w at the root moves by at most rho |n| + |step| (u |n| + en): below
@@ -345,14 +328,14 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
  * included, to first order). */
 static ALWAYS_INLINE void cyl_side_normal(const cylinder_prep *cp, const vd w[3], vd out[3])
 {
-    vd inv = vd_set1(cp->inv_r_aa);
+    vd radial[3];
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         vd hi = vd_sub(vd_mul(vd_set1(cp->a_hi[i]), w[j]), vd_mul(vd_set1(cp->a_hi[j]), w[i]));
         vd lo = vd_sub(vd_mul(vd_set1(cp->a_lo[i]), w[j]), vd_mul(vd_set1(cp->a_lo[j]), w[i]));
-        out[k] = vd_mul(vd_add(hi, lo), inv);
+        radial[k] = vd_add(hi, lo);
     }
-    lane_unit_newton(out);
+    lane_unit_scaled(radial, vd_set1(cp->inv_r_aa), out);
 }
 
 /* The two cap crossings: t0 at the cap at p0 (prim 1), t1 at p1 (prim 2). */
@@ -544,10 +527,8 @@ static ALWAYS_INLINE void cylinder_lanes_first(const cylinder_prep *cp, const la
     cyl_lanes cl;
     cylinder_lanes_solve(cp, ray, 1, &cl);
     lane_root rt;
-    vm exit = lane_pair_first(&cl.pr, cl.root, &rt);
+    vm exit = lane_pair_first(&cl.pr, cl.root, &rt, h);
     cylinder_lanes_record(cp, ray, &rt, vd_sel(exit, cl.prim[1], cl.prim[0]), exit, h);
-    h->found = vm_andnot(vm_or(cl.pr.in[0], cl.pr.in[1]), cl.pr.slow);
-    h->slow = cl.pr.slow;
 }
 
 #endif /* ISECT_CYLINDER_LANES_H */

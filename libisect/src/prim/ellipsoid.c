@@ -179,6 +179,15 @@ static int ellipsoid_exact(const isect_shape *s, const isect_ray *ray, const ise
     return count;
 }
 
+/* Crossing i of the solved kernel (lane_pair_hits). */
+static int ellipsoid_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                            lane_hit *h)
+{
+    (void)prep;
+    ellipsoid_lanes_record(ray, &((const ellipsoid_lanes *)solved)->root[i], i == 1, h);
+    return 1;
+}
+
 /* The fast kernel (ellipsoid_lanes.h) on one ray, as the batch runs it,
  * then the exact path for what it leaves undecided. */
 int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
@@ -194,23 +203,9 @@ int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_param
         return 0;
     ellipsoid_lanes el;
     ellipsoid_lanes_solve(&ep, &lr, 0, &el);
-    if (el.pr.plain_slow)
-        return ellipsoid_exact(s, ray, prm, out);
-    isect_hit rec[2], exact[ISECT_MAX_HITS];
-    int decided[2], in[2], exact_count = 0;
     static const int32_t kind[2] = { ISECT_ENTER, ISECT_EXIT };
-    for (int i = 0; i < 2; i++) {
-        decided[i] = el.pr.decided[i];
-        in[i] = el.pr.in[i];
-        if (decided[i] && in[i]) {
-            lane_hit h;
-            ellipsoid_lanes_record(&lr, &el.root[i], i == 1, &h);
-            lane_hit_store(&h, 0, &rec[i]);
-        }
-    }
-    if (!decided[0] || !decided[1])
-        exact_count = ellipsoid_exact(s, ray, prm, exact);
-    return hits_merge(rec, decided, in, kind, exact, exact_count, out);
+    return lane_pair_hits(&el.pr, kind, ellipsoid_record, &ep, &lr, &el, ellipsoid_exact, s, ray,
+                          prm, out);
 }
 
 /* Sum_k (p_k - c_k)^2 prod_{j != k} R_j^2 - prod R_j^2: the ellipsoid's

@@ -117,6 +117,28 @@ static inline void ellipsoid_prepare(const double *data, double eps, ellipsoid_p
     ep->eps = eps;
 }
 
+/* What the screen and the plain solve share, in doubles: md_k = mu_hi d_k,
+ * A = sum md_k d_k, m = f x d, mm = sum nu_k m_k^2 and |m|_1. */
+typedef struct ellipsoid_terms {
+    vd md[3], a, mm, m_sum;
+} ellipsoid_terms;
+
+static ALWAYS_INLINE void ellipsoid_lanes_terms(const ellipsoid_prep *ep, const vd f[3],
+                                                const vd d[3], ellipsoid_terms *et)
+{
+    vd m[3];
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        et->md[k] = vd_mul(vd_set1(ep->mu_hi[k]), d[k]);
+        m[k] = vd_sub(vd_mul(f[i], d[j]), vd_mul(f[j], d[i]));
+    }
+    et->a = vd_add(vd_add(vd_mul(et->md[0], d[0]), vd_mul(et->md[1], d[1])), vd_mul(et->md[2], d[2]));
+    et->mm = vd_add(vd_add(vd_mul(vd_set1(ep->nu[0]), vd_mul(m[0], m[0])),
+                           vd_mul(vd_set1(ep->nu[1]), vd_mul(m[1], m[1]))),
+                    vd_mul(vd_set1(ep->nu[2]), vd_mul(m[2], m[2])));
+    et->m_sum = vd_add(vd_add(vd_abs(m[0]), vd_abs(m[1])), vd_abs(m[2]));
+}
+
 /*
  * The lanes that may meet the ellipsoid: all but the certain misses, in
  * plain arithmetic (sphere_lanes_screen with weights). The plain m_k errs
@@ -131,20 +153,14 @@ static ALWAYS_INLINE vm ellipsoid_lanes_screen(const ellipsoid_prep *ep, const l
 {
     if (!ep->in_range)
         return vm_true();
-    const vd *o = ray->org, *d = ray->dir;
-    vd f0 = vd_sub(o[0], vd_set1(ep->c[0]));
-    vd f1 = vd_sub(o[1], vd_set1(ep->c[1]));
-    vd f2 = vd_sub(o[2], vd_set1(ep->c[2]));
-    vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
-    vd m1 = vd_sub(vd_mul(f2, d[0]), vd_mul(f0, d[2]));
-    vd m2 = vd_sub(vd_mul(f0, d[1]), vd_mul(f1, d[0]));
-    vd mm = vd_add(vd_add(vd_mul(vd_set1(ep->nu[0]), vd_mul(m0, m0)),
-                          vd_mul(vd_set1(ep->nu[1]), vd_mul(m1, m1))),
-                   vd_mul(vd_set1(ep->nu[2]), vd_mul(m2, m2)));
-    vd a_dd = vd_add(vd_add(vd_mul(vd_mul(vd_set1(ep->mu_hi[0]), d[0]), d[0]),
-                            vd_mul(vd_mul(vd_set1(ep->mu_hi[1]), d[1]), d[1])),
-                     vd_mul(vd_mul(vd_set1(ep->mu_hi[2]), d[2]), d[2]));
-    vd a = vd_add(vd_mul(vd_set1(0x1p-50), vd_mul(lane_max_abs3(f0, f1, f2),
+    const vd *d = ray->dir;
+    vd f[3];
+    for (int k = 0; k < 3; k++)
+        f[k] = vd_sub(ray->org[k], vd_set1(ep->c[k]));
+    ellipsoid_terms et;
+    ellipsoid_lanes_terms(ep, f, d, &et);
+    vd mm = et.mm;
+    vd a = vd_add(vd_mul(vd_set1(0x1p-50), vd_mul(lane_max_abs3(f[0], f[1], f[2]),
                                                   lane_max_abs3(d[0], d[1], d[2]))),
                   vd_set1(0x1p-1000));
     vm usable = vm_and(vd_ge(mm, vd_set1(0x1p-800)),
@@ -152,7 +168,7 @@ static ALWAYS_INLINE vm ellipsoid_lanes_screen(const ellipsoid_prep *ep, const l
                              vd_mul(vd_set1(0x1p-64), mm)));
     usable = vm_and(usable, lane_ray_in_range(ray, 0x1p200));
     vd lhs = vd_mul(mm, vd_set1(1.0 - 0x1p-28));
-    vd rhs = vd_mul(vd_mul(vd_set1(ep->screen_rr), a_dd), vd_set1(1.0 + 0x1p-26));
+    vd rhs = vd_mul(vd_mul(vd_set1(ep->screen_rr), et.a), vd_set1(1.0 + 0x1p-26));
     return vm_not(vm_and(usable, vd_gt(lhs, rhs)));
 }
 
@@ -175,27 +191,23 @@ static ALWAYS_INLINE void ellipsoid_lanes_plain(const ellipsoid_prep *ep, const 
                                                 ellipsoid_plain *pl)
 {
     const vd *d = ray->dir;
-    vd md[3], x[3];
+    vd fh[3], x[3];
     for (int k = 0; k < 3; k++) {
         pl->f[k] = two_sum(ray->org[k], vd_set1(-ep->c[k]));
-        md[k] = vd_mul(vd_set1(ep->mu_hi[k]), d[k]);
-        x[k] = vd_mul(vd_set1(ep->mu_hi[k]), pl->f[k].hi);
+        fh[k] = pl->f[k].hi;
+        x[k] = vd_mul(vd_set1(ep->mu_hi[k]), fh[k]);
     }
-    const vd f0 = pl->f[0].hi, f1 = pl->f[1].hi, f2 = pl->f[2].hi;
-    vd a = vd_add(vd_add(vd_mul(md[0], d[0]), vd_mul(md[1], d[1])), vd_mul(md[2], d[2]));
-    vd b = vd_add(vd_add(vd_mul(md[0], f0), vd_mul(md[1], f1)), vd_mul(md[2], f2));
-    vd c = vd_sub(vd_add(vd_add(vd_mul(x[0], f0), vd_mul(x[1], f1)), vd_mul(x[2], f2)),
+    ellipsoid_terms et;
+    ellipsoid_lanes_terms(ep, fh, d, &et);
+    const vd *md = et.md;
+    vd a = et.a, mm = et.mm, m_sum = et.m_sum;
+    vd b = vd_add(vd_add(vd_mul(md[0], fh[0]), vd_mul(md[1], fh[1])), vd_mul(md[2], fh[2]));
+    vd c = vd_sub(vd_add(vd_add(vd_mul(x[0], fh[0]), vd_mul(x[1], fh[1])), vd_mul(x[2], fh[2])),
                   vd_set1(ep->rr_hi));
-    vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
-    vd m1 = vd_sub(vd_mul(f2, d[0]), vd_mul(f0, d[2]));
-    vd m2 = vd_sub(vd_mul(f0, d[1]), vd_mul(f1, d[0]));
-    vd mm = vd_add(vd_add(vd_mul(vd_set1(ep->nu[0]), vd_mul(m0, m0)),
-                          vd_mul(vd_set1(ep->nu[1]), vd_mul(m1, m1))),
-                   vd_mul(vd_set1(ep->nu[2]), vd_mul(m2, m2)));
     vd rr_a = vd_mul(vd_set1(ep->rr_hi), a);
     vd g = vd_sub(rr_a, mm);
-    vd am = vd_mul(vd_set1(0x1p-50), vd_mul(lane_max_abs3(f0, f1, f2), lane_max_abs3(d[0], d[1], d[2])));
-    vd m_sum = vd_add(vd_add(vd_abs(m0), vd_abs(m1)), vd_abs(m2));
+    vd am = vd_mul(vd_set1(0x1p-50), vd_mul(lane_max_abs3(fh[0], fh[1], fh[2]),
+                                            lane_max_abs3(d[0], d[1], d[2])));
     vd e_g = vd_add(vd_add(vd_mul(vd_set1(0x1p-49), vd_add(rr_a, mm)),
                            vd_mul(vd_set1(4.0), vd_mul(am, vd_add(m_sum, am)))),
                     vd_set1(ELLIPSOID_LANES_ETA));
@@ -235,11 +247,8 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ra
     const vd *d = ray->dir;
     const vd u = vd_set1(ELLIPSOID_LANES_U), u2 = vd_set1(ELLIPSOID_LANES_U2);
     vd vh[3], vl[3], x[3], w[3], h_hi[3];
+    lane_offset_at(pl->f, t0, d, vh, vl);
     for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(t0, d[k]);
-        vdd sum = two_sum(pl->f[k].hi, p.hi);
-        vh[k] = sum.hi;
-        vl[k] = vd_add(sum.lo, vd_add(pl->f[k].lo, p.lo));
         vd mu = vd_set1(ep->mu_hi[k]);
         vdd sq = two_prod(vh[k], vh[k]);
         vdd h = two_prod(mu, sq.hi);
@@ -274,12 +283,7 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ra
                                   vd_set1(1.0 + 0x1p-40))),
                     vd_set1(ELLIPSOID_LANES_ETA));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt);
-    rt->t = nt.t;
-    rt->err = nt.err;
-    rt->enter = nt.enter;
-    rt->t_dd = two_sum(t0, vd_neg(nt.step));
-    rt->rho = nt.rho;
+    lane_root_newton(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt, rt);
     vd gg = vd_zero();
     for (int k = 0; k < 3; k++) {
         vd v = vd_add(vh[k], vd_sub(vl[k], vd_mul(nt.step, d[k])));
@@ -299,12 +303,7 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ra
 static ALWAYS_INLINE void ellipsoid_lanes_record(const lane_ray *ray, const lane_root *rt,
                                                  vm exit, lane_hit *h)
 {
-    vd inv = vd_div(vd_set1(1.0), vd_sqrt(rt->vv));
-    for (int k = 0; k < 3; k++)
-        h->normal[k] = vd_mul(rt->v[k], inv);
-    lane_unit_newton(h->normal);
-    for (int k = 0; k < 3; k++)
-        h->normal[k] = vd_add(h->normal[k], vd_zero()); /* never -0 */
+    lane_unit_scaled(rt->v, vd_div(vd_set1(1.0), vd_sqrt(rt->vv)), h->normal);
     h->t = rt->t;
     lane_point_on_ray(ray, rt->t_dd, h->point);
     h->uv[0] = h->uv[1] = vd_zero();
@@ -334,10 +333,8 @@ static ALWAYS_INLINE void ellipsoid_lanes_first(const ellipsoid_prep *ep, const 
     ellipsoid_lanes el;
     ellipsoid_lanes_solve(ep, ray, 1, &el);
     lane_root rt;
-    vm exit = lane_pair_first(&el.pr, el.root, &rt);
+    vm exit = lane_pair_first(&el.pr, el.root, &rt, h);
     ellipsoid_lanes_record(ray, &rt, exit, h);
-    h->found = vm_andnot(vm_or(el.pr.in[0], el.pr.in[1]), el.pr.slow);
-    h->slow = el.pr.slow;
 }
 
 #endif /* ISECT_ELLIPSOID_LANES_H */

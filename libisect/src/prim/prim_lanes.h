@@ -21,6 +21,7 @@
 #define ISECT_PRIM_LANES_H
 
 #include "core/eft.h"
+#include "prim/prim.h"
 
 /* LANE_W object-space rays. */
 typedef struct lane_ray {
@@ -262,17 +263,91 @@ static ALWAYS_INLINE vm lane_certainly_out(vd t, vd err, const lane_ray *r)
     return vm_or(vd_lt(vd_add(t, err), r->tmin), vd_gt(vd_sub(t, err), r->tmax));
 }
 
-/* o + t d for t = t.hi + t.lo, each coordinate summed exactly enough
- * (TwoProduct of t.hi d, TwoSum with o, the low parts rounded) that the one
- * final rounding is its only error: a point on the ray at a parameter
- * known to ~u^2, even where |o| is far larger than the point. */
-static ALWAYS_INLINE void lane_point_on_ray(const lane_ray *r, vdd t, vd out[3])
+/* o + t d for t = t.hi + t.lo as xh + xl per coordinate: TwoProduct of
+ * t.hi d, TwoSum with o (xh its head), the low parts summed and rounded
+ * once (xl): within u|xl| + |t.lo d| u, ~3u^2 (|o| + |t d|). */
+static ALWAYS_INLINE void lane_point_on_ray_dd(const lane_ray *r, vdd t, vd xh[3], vd xl[3])
 {
     for (int k = 0; k < 3; k++) {
         vdd p = two_prod(t.hi, r->dir[k]);
         vdd s = two_sum(r->org[k], p.hi);
-        out[k] = vd_add(s.hi, vd_add(vd_add(s.lo, p.lo), vd_mul(t.lo, r->dir[k])));
+        xh[k] = s.hi;
+        xl[k] = vd_add(vd_add(s.lo, p.lo), vd_mul(t.lo, r->dir[k]));
     }
+}
+
+/* The same rounded to doubles: the one final rounding is the only error,
+ * so a point on the ray at a parameter known to ~u^2 lies within its own
+ * ulp, even where |o| is far larger than the point. */
+static ALWAYS_INLINE void lane_point_on_ray(const lane_ray *r, vdd t, vd out[3])
+{
+    vd xh[3], xl[3];
+    lane_point_on_ray_dd(r, t, xh, xl);
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_add(xh[k], xl[k]);
+}
+
+/* f + t0 d for f exact as f.hi + f.lo (a difference of coordinates by
+ * TwoSum) and a double t0: vh the exact sum of f.hi and fl(t0 d), vl its
+ * error + f.lo + the product's error, rounded: within 8u^2 F per
+ * component, F = max|f.hi| + |t0| max|d|. The vector from a shape's point
+ * to the ray's point at t0, to ~u^2 of the larger of the two however
+ * much they cancel. */
+static ALWAYS_INLINE void lane_offset_at(const vdd f[3], vd t0, const vd d[3], vd vh[3], vd vl[3])
+{
+    for (int k = 0; k < 3; k++) {
+        vdd p = two_prod(t0, d[k]);
+        vdd sum = two_sum(f[k].hi, p.hi);
+        vh[k] = sum.hi;
+        vl[k] = vd_add(sum.lo, vd_add(f[k].lo, p.lo));
+    }
+}
+
+/*
+ * |vh + vl|^2 - (c_hi + c_lo) for a vector known as heads and small low
+ * parts: exact squares of the heads (TwoProduct), summed exactly with
+ * -c_hi (TwoSum), the low parts (the squares' errors, 2 vh.vl, |vl|^2, the
+ * sums' errors, -c_lo) rounded in a tree of depth <= 5. Bound of its own
+ * arithmetic: e = 32u^2 (S + c_hi) + 8u (2 V L + L^2) + u|R|, S the heads'
+ * rounded sum of squares, V = sum|vh_k|, L = sum|vl_k|; the caller adds
+ * the errors of vh + vl and of c, and ETA.
+ */
+typedef struct lane_sq3 {
+    vd r, e;
+    vd v_sum, l_sum;
+} lane_sq3;
+
+static ALWAYS_INLINE void lane_sq3_minus(const vd vh[3], const vd vl[3], double c_hi, double c_lo,
+                                         lane_sq3 *out)
+{
+    const double u = 0x1p-53;
+    vdd g0 = two_prod(vh[0], vh[0]), g1 = two_prod(vh[1], vh[1]), g2 = two_prod(vh[2], vh[2]);
+    vdd a = two_sum(g0.hi, g1.hi);
+    vdd b = two_sum(a.hi, g2.hi);
+    vdd c = two_sum(b.hi, vd_set1(-c_hi));
+    vd cross = vd_add(vd_add(vd_mul(vh[0], vl[0]), vd_mul(vh[1], vl[1])), vd_mul(vh[2], vl[2]));
+    vd sq_lo = vd_add(vd_add(vd_mul(vl[0], vl[0]), vd_mul(vl[1], vl[1])), vd_mul(vl[2], vl[2]));
+    vd lows = vd_add(vd_add(vd_add(a.lo, b.lo), vd_add(c.lo, vd_set1(-c_lo))),
+                     vd_add(vd_add(vd_add(g0.lo, g1.lo), g2.lo), vd_add(vd_add(cross, cross), sq_lo)));
+    out->r = vd_add(c.hi, lows);
+    out->v_sum = vd_add(vd_add(vd_abs(vh[0]), vd_abs(vh[1])), vd_abs(vh[2]));
+    out->l_sum = vd_add(vd_add(vd_abs(vl[0]), vd_abs(vl[1])), vd_abs(vl[2]));
+    vd v_sum = out->v_sum, l_sum = out->l_sum;
+    out->e = vd_add(vd_add(vd_mul(vd_set1(32.0 * u * u), vd_add(b.hi, vd_set1(c_hi))),
+                           vd_mul(vd_set1(8.0 * u), vd_add(vd_mul(vd_add(v_sum, v_sum), l_sum),
+                                                           vd_mul(l_sum, l_sum)))),
+                    vd_mul(vd_set1(u), vd_abs(out->r)));
+}
+
+/* v scaled by inv to nearly unit length (|v inv| = 1 + O(u)), then made
+ * unit by lane_unit_newton; never -0. */
+static ALWAYS_INLINE void lane_unit_scaled(const vd v[3], vd inv, vd out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_mul(v[k], inv);
+    lane_unit_newton(out);
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_add(out[k], vd_zero());
 }
 
 /* t clamped into [tmin, tmax]: the parameter reported for a crossing
@@ -355,6 +430,23 @@ typedef struct lane_root {
     vd  v[3];    /* the shape's vector at the root, for the normal */
     vd  vv;      /* and a scalar (e.g. its squared length) */
 } lane_root;
+
+/* One certified Newton step (lane_newton_certify, arguments as there) as
+ * a root: t and its bound, t as a double-double (t0 - step exactly, within
+ * rho), its kind; ok is the certificate alone (a shape adds what its
+ * record needs). */
+static ALWAYS_INLINE void lane_root_newton(vd t0, vd r, vd e_r, vd p, vd e_p, vd a, vd a_up,
+                                           lane_newton *nt, lane_root *rt)
+{
+    lane_newton_certify(t0, r, e_r, p, e_p, a, a_up, nt);
+    rt->t = nt->t;
+    rt->err = nt->err;
+    rt->enter = nt->enter;
+    rt->t_dd = two_sum(t0, vd_neg(nt->step));
+    rt->rho = nt->rho;
+    rt->ok = nt->ok;
+    rt->vv = vd_zero();
+}
 
 /* The lanes of e where m, of f elsewhere. */
 static ALWAYS_INLINE void lane_root_sel(vm m, const lane_root *e, const lane_root *f, lane_root *out)
@@ -490,13 +582,55 @@ static ALWAYS_INLINE void lane_pair_solve(lane_refine_fn refine, const void *pre
     hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
 }
 
-/* The record to report for the first hit: the upper crossing where only
- * it is in. */
-static ALWAYS_INLINE vm lane_pair_first(const lane_pair *pr, const lane_root root[2], lane_root *rt)
+/* The first hit's verdicts in h (found, slow) and the crossing to report:
+ * the upper one where only it is in (returned as a mask). */
+static ALWAYS_INLINE vm lane_pair_first(const lane_pair *pr, const lane_root root[2], lane_root *rt,
+                                        lane_hit *h)
 {
     vm upper = vm_andnot(pr->in[1], pr->in[0]);
     lane_root_sel(upper, &root[1], &root[0], rt);
+    h->found = vm_andnot(vm_or(pr->in[0], pr->in[1]), pr->slow);
+    h->slow = pr->slow;
     return upper;
 }
+
+#if LANE_W == 1
+/*
+ * The scalar all-hits call over a two-crossing kernel run on one ray
+ * (first = 0), so that each crossing the kernel decides gets the record the
+ * batch gives it: the exact path alone where the kernel decided nothing,
+ * else each crossing from the kernel where decided and certified by its
+ * record, from the exact path where not (hits_merge). record() writes
+ * crossing i of the solved kernel (`solved`) and says whether that record
+ * is certified; kind[] are the crossings' kinds.
+ */
+typedef int (*lane_record_fn)(const void *prep, const lane_ray *ray, const void *solved, int i,
+                              lane_hit *h);
+typedef int (*lane_exact_fn)(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                             isect_hit out[ISECT_MAX_HITS]);
+
+static inline int lane_pair_hits(const lane_pair *pr, const int32_t kind[2], lane_record_fn record,
+                                 const void *prep, const lane_ray *lr, const void *solved,
+                                 lane_exact_fn exact, const isect_shape *s, const isect_ray *ray,
+                                 const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
+{
+    if (pr->plain_slow)
+        return exact(s, ray, prm, out);
+    isect_hit rec[2], found[ISECT_MAX_HITS];
+    int decided[2], in[2], found_count = 0;
+    for (int i = 0; i < 2; i++) {
+        decided[i] = pr->decided[i];
+        in[i] = pr->in[i];
+        if (decided[i] && in[i]) {
+            lane_hit h;
+            decided[i] = record(prep, lr, solved, i, &h);
+            lane_hit_store(&h, 0, &rec[i]);
+        }
+    }
+    if (!decided[0] || !decided[1])
+        found_count = exact(s, ray, prm, found);
+    return hits_merge(rec, decided, in, kind, found, found_count, out);
+}
+#endif
 
 #endif /* ISECT_PRIM_LANES_H */

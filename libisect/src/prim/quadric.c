@@ -244,6 +244,14 @@ static int quadric_exact(const isect_shape *s, const isect_ray *ray, const isect
     return kept;
 }
 
+/* Crossing i of the solved kernel (lane_pair_hits): deferred where its
+ * normal is not certified. */
+static int quadric_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                          lane_hit *h)
+{
+    return quadric_lanes_record(prep, ray, &((const quadric_lanes *)solved)->root[i], h);
+}
+
 /* The fast kernel (quadric_lanes.h) on one ray, as the batch runs it, then
  * the exact path for what it leaves undecided. */
 int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
@@ -257,23 +265,9 @@ int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
     lane_ray_from(&lr, ray);
     quadric_lanes ql;
     quadric_lanes_solve(&qp, &lr, 0, &ql);
-    if (ql.pr.plain_slow)
-        return quadric_exact(s, ray, prm, out);
-    isect_hit rec[2], exact[ISECT_MAX_HITS];
-    int decided[2], in[2], exact_count = 0;
     int32_t kind[2] = { ql.lo_enter ? ISECT_ENTER : ISECT_EXIT, ql.lo_enter ? ISECT_EXIT : ISECT_ENTER };
-    for (int i = 0; i < 2; i++) {
-        decided[i] = ql.pr.decided[i];
-        in[i] = ql.pr.in[i];
-        if (decided[i] && in[i]) {
-            lane_hit h;
-            decided[i] = quadric_lanes_record(&qp, &lr, &ql.root[i], &h); /* else exact */
-            lane_hit_store(&h, 0, &rec[i]);
-        }
-    }
-    if (!decided[0] || !decided[1])
-        exact_count = quadric_exact(s, ray, prm, exact);
-    return hits_merge(rec, decided, in, kind, exact, exact_count, out);
+    return lane_pair_hits(&ql.pr, kind, quadric_record, &qp, &lr, &ql, quadric_exact, s, ray, prm,
+                          out);
 }
 
 /* Q(x) (scaled coordinates) certified as a double-double, exactly where

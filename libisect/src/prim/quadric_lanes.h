@@ -216,12 +216,8 @@ static ALWAYS_INLINE void quadric_lanes_refine(const void *prep, const lane_ray 
     const vd *o = ray->org, *d = ray->dir;
     const vd u = vd_set1(QUAD_LANES_U), u2 = vd_set1(QUAD_LANES_U2);
     vd xh[3], xl[3];
-    for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(t0, d[k]);
-        vdd s = two_sum(o[k], p.hi);
-        xh[k] = s.hi;
-        xl[k] = vd_add(s.lo, p.lo);
-    }
+    const vdd org[3] = { { o[0], vd_zero() }, { o[1], vd_zero() }, { o[2], vd_zero() } };
+    lane_offset_at(org, t0, d, xh, xl);
     vd acc = vd_set1(qp->j), lows = vd_zero(), heads = vd_set1(fabs(qp->j));
     for (int m = 0; m < 9; m++) {
         double coef = qp->mono[m];
@@ -264,15 +260,9 @@ static ALWAYS_INLINE void quadric_lanes_refine(const void *prep, const lane_ray 
                     vd_add(vd_add(vd_mul(l_sum, pl->y_max), vd_mul(vd_set1(4.0 * 0x1p-53 * qp->g_sum), dm)),
                            vd_set1(QUAD_LANES_ETA)));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt);
-    rt->t = nt.t;
-    rt->err = nt.err;
-    rt->enter = nt.enter;
-    rt->t_dd = two_sum(t0, vd_neg(nt.step));
-    rt->rho = nt.rho;
+    lane_root_newton(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt, rt);
 
-    rt->ok = nt.ok;
-    rt->v[0] = rt->v[1] = rt->v[2] = rt->vv = vd_zero();
+    rt->v[0] = rt->v[1] = rt->v[2] = vd_zero();
 }
 
 /*
@@ -293,13 +283,9 @@ static ALWAYS_INLINE vm quadric_lanes_record(const quadric_prep *qp, const lane_
     const vd *o = ray->org, *d = ray->dir;
     const vd u2 = vd_set1(QUAD_LANES_U2);
     vd xh[3], xl[3];
-    for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(rt->t_dd.hi, d[k]);
-        vdd s = two_sum(o[k], p.hi);
-        xh[k] = s.hi;
-        xl[k] = vd_add(vd_add(s.lo, p.lo), vd_mul(rt->t_dd.lo, d[k]));
+    lane_point_on_ray_dd(ray, rt->t_dd, xh, xl);
+    for (int k = 0; k < 3; k++)
         h->point[k] = vd_add(xh[k], xl[k]);
-    }
     vd dm = lane_max_abs3(d[0], d[1], d[2]);
     vd big_f = vd_add(lane_max_abs3(o[0], o[1], o[2]), vd_mul(vd_abs(rt->t_dd.hi), dm));
     vd delta = vd_add(vd_mul(rt->rho, dm), vd_mul(vd_mul(vd_set1(4.0), u2), big_f));
@@ -319,12 +305,7 @@ static ALWAYS_INLINE vm quadric_lanes_record(const quadric_prep *qp, const lane_
         gg = vd_add(gg, vd_mul(v[k], v[k]));
         ee = vd_add(ee, vd_mul(e, e));
     }
-    vd inv = vd_div(vd_set1(1.0), vd_sqrt(gg));
-    for (int k = 0; k < 3; k++)
-        h->normal[k] = vd_mul(v[k], inv);
-    lane_unit_newton(h->normal);
-    for (int k = 0; k < 3; k++)
-        h->normal[k] = vd_add(h->normal[k], vd_zero()); /* never -0 */
+    lane_unit_scaled(v, vd_div(vd_set1(1.0), vd_sqrt(gg)), h->normal);
     h->t = rt->t;
     h->uv[0] = h->uv[1] = vd_zero();
     h->prim = vd_set1(-1.0);
@@ -357,11 +338,10 @@ static ALWAYS_INLINE void quadric_lanes_first(const quadric_prep *qp, const lane
     quadric_lanes ql;
     quadric_lanes_solve(qp, ray, 1, &ql);
     lane_root rt;
-    (void)lane_pair_first(&ql.pr, ql.root, &rt);
+    (void)lane_pair_first(&ql.pr, ql.root, &rt, h);
     vm normal_ok = quadric_lanes_record(qp, ray, &rt, h);
-    vm hit = vm_or(ql.pr.in[0], ql.pr.in[1]);
-    h->slow = vm_or(ql.pr.slow, vm_andnot(hit, normal_ok)); /* a normal it cannot certify */
-    h->found = vm_andnot(hit, h->slow);
+    h->slow = vm_or(h->slow, vm_andnot(h->found, normal_ok)); /* a normal it cannot certify */
+    h->found = vm_andnot(h->found, h->slow);
 }
 
 #endif /* ISECT_QUADRIC_LANES_H */

@@ -200,52 +200,28 @@ static ALWAYS_INLINE void sphere_lanes_refine(const void *prep, const lane_ray *
     const vd *d = ray->dir;
     const vd u = vd_set1(SPHERE_LANES_U), u2 = vd_set1(SPHERE_LANES_U2);
     vd vh[3], vl[3];
-    for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(t0, d[k]);
-        vdd sum = two_sum(pl->f[k].hi, p.hi);
-        vh[k] = sum.hi;
-        vl[k] = vd_add(sum.lo, vd_add(pl->f[k].lo, p.lo));
-    }
-    vdd g0 = two_prod(vh[0], vh[0]), g1 = two_prod(vh[1], vh[1]), g2 = two_prod(vh[2], vh[2]);
-    vdd a = two_sum(g0.hi, g1.hi);
-    vdd b = two_sum(a.hi, g2.hi);
-    vdd c = two_sum(b.hi, vd_set1(-sp->rr_hi));
-    vd cross = vd_add(vd_add(vd_mul(vh[0], vl[0]), vd_mul(vh[1], vl[1])), vd_mul(vh[2], vl[2]));
-    vd sq_lo = vd_add(vd_add(vd_mul(vl[0], vl[0]), vd_mul(vl[1], vl[1])), vd_mul(vl[2], vl[2]));
-    vd lows = vd_add(vd_add(vd_add(a.lo, b.lo), vd_add(c.lo, vd_set1(-sp->rr_lo))),
-                     vd_add(vd_add(vd_add(g0.lo, g1.lo), g2.lo), vd_add(vd_add(cross, cross), sq_lo)));
-    vd r = vd_add(c.hi, lows);
-
-    vd v_sum = vd_add(vd_add(vd_abs(vh[0]), vd_abs(vh[1])), vd_abs(vh[2]));
-    vd l_sum = vd_add(vd_add(vd_abs(vl[0]), vd_abs(vl[1])), vd_abs(vl[2]));
+    lane_offset_at(pl->f, t0, d, vh, vl);
+    lane_sq3 sq;
+    lane_sq3_minus(vh, vl, sp->rr_hi, sp->rr_lo, &sq);
+    vd r = sq.r, l_sum = sq.l_sum;
     vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vd f_max = lane_max_abs3(pl->f[0].hi, pl->f[1].hi, pl->f[2].hi);
     vd big_f = vd_add(f_max, vd_mul(vd_abs(t0), d_max));
-    vd e_r = vd_add(vd_add(vd_mul(vd_mul(vd_set1(32.0), u2), vd_add(b.hi, vd_set1(sp->rr_hi))),
-                           vd_mul(vd_mul(vd_set1(8.0), u),
-                                  vd_add(vd_mul(vd_add(v_sum, v_sum), l_sum), vd_mul(l_sum, l_sum)))),
-                    vd_add(vd_add(vd_mul(vd_mul(vd_set1(28.0), u2), vd_mul(v_sum, big_f)),
-                                  vd_mul(u, vd_abs(r))),
-                           vd_set1(SPHERE_LANES_ETA)));
+    vd e_r = vd_add(sq.e, vd_add(vd_mul(vd_mul(vd_set1(28.0), u2), vd_mul(sq.v_sum, big_f)),
+                                 vd_set1(SPHERE_LANES_ETA)));
 
     vd p0 = vd_mul(d[0], vh[0]), p1 = vd_mul(d[1], vh[1]), p2 = vd_mul(d[2], vh[2]);
     vd pp = vd_add(vd_add(p0, p1), p2);
     vd e_p = vd_add(vd_mul(vd_mul(vd_set1(4.0), u), vd_add(vd_add(vd_abs(p0), vd_abs(p1)), vd_abs(p2))),
                     vd_mul(vd_set1(1.0 + 2.0 * SPHERE_LANES_U), vd_mul(d_max, l_sum)));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->dd, pl->pp.a_up, &nt);
+    lane_root_newton(t0, r, e_r, pp, e_p, pl->dd, pl->pp.a_up, &nt, rt);
     /* v = f + (t0 - step) d is then within rho |d| of the vector to the
      * exact hit: the normal is certified when that is below u r (a grazing
      * ray's is not: it defers). */
     vm normal_ok = vd_le(vd_mul(vd_mul(nt.rho, d_max), vd_set1(2.0)),
                          vd_set1(SPHERE_LANES_U * sp->r));
     rt->ok = vm_and(nt.ok, normal_ok);
-    rt->err = nt.err;
-    rt->t = nt.t;
-    rt->enter = nt.enter;
-    rt->t_dd.hi = nt.t;
-    rt->t_dd.lo = rt->vv = vd_zero();
-    rt->rho = nt.err;
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
 }
@@ -259,15 +235,14 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
                                               const vd v[3], vm exit, lane_hit *h)
 {
     const vd *d = ray->dir;
-    vd inv_r = vd_set1(sp->inv_r);
-    vd n[3] = { vd_mul(v[0], inv_r), vd_mul(v[1], inv_r), vd_mul(v[2], inv_r) };
-    lane_unit_newton(n);
+    vd n[3];
+    lane_unit_scaled(v, vd_set1(sp->inv_r), n);
     h->t = t;
     vd o_max = lane_max_abs3(ray->org[0], ray->org[1], ray->org[2]);
     vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vm snap = vd_lt(vd_set1(sp->snap_scale), vd_add(o_max, vd_mul(vd_abs(t), d_max)));
     for (int k = 0; k < 3; k++) {
-        vd nk = vd_add(n[k], vd_zero()); /* + 0: never -0 */
+        vd nk = n[k];
         h->normal[k] = nk;
         vd snapped = vd_add(vd_set1(sp->c[k]), vd_mul(vd_set1(sp->r), nk));
         vd along = vd_add(ray->org[k], vd_mul(t, d[k]));
@@ -300,10 +275,8 @@ static ALWAYS_INLINE void sphere_lanes_first(const sphere_prep *sp, const lane_r
     sphere_lanes sl;
     sphere_lanes_solve(sp, ray, 1, &sl);
     lane_root rt;
-    vm exit = lane_pair_first(&sl.pr, sl.root, &rt);
+    vm exit = lane_pair_first(&sl.pr, sl.root, &rt, h);
     sphere_lanes_record(sp, ray, rt.t, rt.v, exit, h);
-    h->found = vm_andnot(vm_or(sl.pr.in[0], sl.pr.in[1]), sl.pr.slow);
-    h->slow = sl.pr.slow;
 }
 
 #endif /* ISECT_SPHERE_LANES_H */
