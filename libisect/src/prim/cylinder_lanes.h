@@ -143,6 +143,24 @@ static ALWAYS_INLINE void cyl_cross_axis(const cylinder_prep *cp, const vd x[3],
     }
 }
 
+/* (xh + xl) x a, a = a_hi + a_lo, as yh + yl: the heads' products exact
+ * (TwoProduct) and their difference exact (TwoSum), the first-order terms
+ * (xl x a_hi, xh x a_lo, the products' errors) rounded, xl x a_lo dropped. */
+static ALWAYS_INLINE void cyl_cross_axis_dd(const cylinder_prep *cp, const vd xh[3], const vd xl[3],
+                                            vd yh[3], vd yl[3])
+{
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        vd ai = vd_set1(cp->a_hi[i]), aj = vd_set1(cp->a_hi[j]);
+        vdd p1 = two_prod(xh[i], aj), p2 = two_prod(xh[j], ai);
+        vdd s = two_sum(p1.hi, vd_neg(p2.hi));
+        yh[k] = s.hi;
+        vd low_x = vd_sub(vd_mul(xl[i], aj), vd_mul(xl[j], ai));
+        vd low_a = vd_sub(vd_mul(xh[i], vd_set1(cp->a_lo[j])), vd_mul(xh[j], vd_set1(cp->a_lo[i])));
+        yl[k] = vd_add(vd_add(s.lo, vd_sub(p1.lo, p2.lo)), vd_add(low_x, low_a));
+    }
+}
+
 /*
  * Bounds shared by the screen and the plain solve, for n = d x a_hi and
  * T = f.n with f rounded (|f - f*| <= u|f|): per component |n - n*| <= en
@@ -283,16 +301,7 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
     const vd u = vd_set1(CYL_LANES_U), u2 = vd_set1(CYL_LANES_U2);
     vd vh[3], vl[3], wh[3], wl[3];
     lane_offset_at(pl->f, t0, d, vh, vl);
-    for (int k = 0; k < 3; k++) {
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        vd ai = vd_set1(cp->a_hi[i]), aj = vd_set1(cp->a_hi[j]);
-        vdd p1 = two_prod(vh[i], aj), p2 = two_prod(vh[j], ai);
-        vdd s = two_sum(p1.hi, vd_neg(p2.hi));
-        wh[k] = s.hi;
-        vd low_v = vd_sub(vd_mul(vl[i], aj), vd_mul(vl[j], ai));
-        vd low_a = vd_sub(vd_mul(vh[i], vd_set1(cp->a_lo[j])), vd_mul(vh[j], vd_set1(cp->a_lo[i])));
-        wl[k] = vd_add(vd_add(s.lo, vd_sub(p1.lo, p2.lo)), vd_add(low_v, low_a));
-    }
+    cyl_cross_axis_dd(cp, vh, vl, wh, wl);
     lane_sq3 sq;
     lane_sq3_minus(wh, wl, cp->rr_aa_hi, cp->rr_aa_lo, &sq);
     vd r = sq.r, w_sum = sq.v_sum, l_sum = sq.l_sum;
@@ -315,26 +324,25 @@ static ALWAYS_INLINE void cyl_lanes_refine(const void *prep, const lane_ray *ray
     lane_root_newton(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt, rt);
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_add(wh[k], vd_sub(wl[k], vd_mul(nt.step, n[k])));
-    /* w at the root moves by at most rho |n| + |step| (u |n| + en): below
-     * u/4 of r |a| */
-    vd e_n = vd_mul(vd_set1(4.0), vd_add(vd_mul(nt.rho, pl->n_sum),
+    /* w at the root is off by at most rho |n| + |step| (u |n| + en) + ew
+     * (the root's error, the step's rounding, w's own): below u/4 of r |a| */
+    vd e_n = vd_mul(vd_set1(4.0), vd_add(vd_add(vd_mul(nt.rho, pl->n_sum), ew),
                                          vd_mul(vd_abs(nt.step), vd_add(vd_mul(u, pl->n_sum), pl->en))));
     vm normal_ok = vd_le(vd_mul(e_n, e_n), vd_mul(u2, rr_aa));
     rt->ok = vm_and(nt.ok, normal_ok);
 }
 
-/* The side's outward unit normal from w at the root: a x w, |a x w| = |a|
- * |w| = r a.a, scaled by 1/(r a.a) and renormalised (a's low part
- * included, to first order). */
+/* The side's outward unit normal from w at the root: a x w = -(w x a),
+ * |a x w| = |a| |w| = r a.a, each component from exact products rounded
+ * once (within u of itself, to first order: no cancellation costs the
+ * direction anything), scaled by 1/(r a.a) and renormalised. */
 static ALWAYS_INLINE void cyl_side_normal(const cylinder_prep *cp, const vd w[3], vd out[3])
 {
-    vd radial[3];
-    for (int k = 0; k < 3; k++) {
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        vd hi = vd_sub(vd_mul(vd_set1(cp->a_hi[i]), w[j]), vd_mul(vd_set1(cp->a_hi[j]), w[i]));
-        vd lo = vd_sub(vd_mul(vd_set1(cp->a_lo[i]), w[j]), vd_mul(vd_set1(cp->a_lo[j]), w[i]));
-        radial[k] = vd_add(hi, lo);
-    }
+    const vd zero[3] = { vd_zero(), vd_zero(), vd_zero() };
+    vd yh[3], yl[3], radial[3];
+    cyl_cross_axis_dd(cp, w, zero, yh, yl);
+    for (int k = 0; k < 3; k++)
+        radial[k] = vd_neg(vd_add(yh[k], yl[k]));
     lane_unit_scaled(radial, vd_set1(cp->inv_r_aa), out);
 }
 

@@ -291,8 +291,9 @@ static ALWAYS_INLINE void ellipsoid_lanes_refine(const void *prep, const lane_ra
         gg = vd_add(gg, vd_mul(rt->v[k], rt->v[k]));
     }
     rt->vv = gg;
-    vd e_n = vd_mul(vd_add(vd_mul(vd_set1(4.0), nt.rho), vd_mul(vd_mul(vd_set1(4.0), u), vd_abs(nt.step))),
-                    d_max);
+    vd e_n = vd_add(vd_mul(vd_add(vd_mul(vd_set1(4.0), nt.rho), vd_mul(vd_mul(vd_set1(4.0), u), vd_abs(nt.step))),
+                           d_max),
+                    vd_mul(vd_mul(vd_set1(32.0), u2), big_f));
     vm normal_ok = vd_le(vd_mul(e_n, e_n), vd_mul(vd_set1(ELLIPSOID_LANES_U2), gg));
     rt->ok = vm_and(nt.ok, normal_ok);
 }

@@ -179,14 +179,16 @@ static ALWAYS_INLINE vm lane_ray_in_range(const lane_ray *ray, double org_bound)
  * One certified Newton step on a quadratic line function (a sphere's,
  * ellipsoid's, cylinder's or general quadric's Q(o + t dir) = A t^2 + 2B t
  * + C), at a start t0: from r = Q(t0) (within e_r), p = Q'(t0)/2 (within
- * e_p) and a = A (with a_up >= |A|), the step sigma = r/(2p) (1 + c), c =
- * a r/(4p^2): Newton's step with the quadratic's own curvature term (the
- * exact small root of r + 2p h + a h^2 = 0 is -r/(2p) (1 + c + 2c^2 +
- * ...)), so the residual left at x = t0 - sigma is of third order, a sigma^2
- * |c| (2 + |c|), and a start off by u|t| lands within a tiny fraction of an
- * ulp. Kantorovich's bound for the quadratic is sharp and cheap: with eta
- * >= |Q(x)| (that term, the errors of r and p, and the step's roundings,
- * 16u |sigma| |p|) and m = 2(|p| - e_p - |a| |sigma|) <= |Q'(x)|, if
+ * e_p) and a = A (with a_up >= |A| and a_up - |a| >= |A - a|), the step
+ * sigma = r/(2p) (1 + c), c = a r/(4p^2): Newton's step with the
+ * quadratic's own curvature term (the exact small root of r + 2p h + a h^2
+ * = 0 is -r/(2p) (1 + c + 2c^2 + ...)), so the residual left at x = t0 -
+ * sigma is of third order, r c^2 (2 + c) = a sigma^2 c (2 + c)/(1 + c)^2,
+ * below 1.14 a sigma^2 |c| (2 + |c|) for |c| <= 1/16, and a start off by
+ * u|t| lands within a tiny fraction of an ulp. Kantorovich's bound for the
+ * quadratic is sharp and cheap: with eta >= |Q(x)| (that term, the errors
+ * of r and p, (A - a) sigma^2, and the step's roundings, 16u |sigma| |p|)
+ * and m = 2(|p| - e_p - |a| |sigma|) <= |Q'(x)|, if
  * 4 |a| eta <= m^2 there is exactly one root within rho = 2 eta/m of x,
  * and Q' keeps its sign there: the root is an entry into Q < 0 when p < 0.
  * Taken only when the shortfall (e_p + |a| |sigma|)/|p| <= 1/4 (so m >=
@@ -216,8 +218,11 @@ static ALWAYS_INLINE void lane_newton_certify(vd t0, vd r, vd e_r, vd p, vd e_p,
     vd c_abs = vd_abs(curv);
     vd inv_2p_abs = vd_mul(vd_abs(inv_2p), up);
     vd shortfall = vd_mul(vd_mul(vd_add(e_p, vd_mul(a_up, step_abs)), vd_set1(2.0)), inv_2p_abs);
-    vd curvature = vd_mul(vd_mul(a_up, vd_mul(step_abs, step_abs)),
-                          vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs)));
+    vd e_a = vd_mul(vd_sub(a_up, vd_abs(a)), up);
+    vd curvature = vd_mul(vd_mul(step_abs, step_abs),
+                          vd_add(vd_mul(vd_mul(vd_set1(1.14), a_up),
+                                        vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs))),
+                                 e_a));
     vd eta = vd_add(vd_add(curvature, e_r),
                     vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(vd_set1(16.0 * u), vd_abs(p))), step_abs));
     vm kantorovich = vd_le(vd_mul(vd_mul(vd_set1(4.0), a_up), eta),

@@ -257,7 +257,8 @@ static ALWAYS_INLINE void quadric_lanes_refine(const void *prep, const lane_ray 
     vd e_p = vd_add(vd_add(vd_mul(vd_mul(vd_set1(4.0), u),
                                   vd_add(vd_add(vd_add(vd_abs(q0), vd_abs(q1)), vd_abs(q2)), vd_abs(pl->gd))),
                            vd_mul(vd_add(x_sum, l_sum), pl->e_y)),
-                    vd_add(vd_add(vd_mul(l_sum, pl->y_max), vd_mul(vd_set1(4.0 * 0x1p-53 * qp->g_sum), dm)),
+                    vd_add(vd_add(vd_mul(vd_mul(l_sum, pl->y_max), vd_set1(1.0 + 0x1p-40)),
+                                  vd_mul(vd_set1(4.0 * 0x1p-53 * qp->g_sum), dm)),
                            vd_set1(QUAD_LANES_ETA)));
     lane_newton nt;
     lane_root_newton(t0, r, e_r, pp, e_p, pl->a, pl->pp.a_up, &nt, rt);
@@ -270,9 +271,10 @@ static ALWAYS_INLINE void quadric_lanes_refine(const void *prep, const lane_ray 
  * the point from the double-double t; the normal from the half-gradient
  * v = Mx + g at x = o + t d, x as xh + xl (TwoProduct, TwoSum; xl rounded,
  * within 3u^2 F), each v_k from exact products of the heads summed by
- * TwoSums, the low parts to first order: |v_k - exact| <= u|v_k| + 16u^2
- * (sum_j |M_kj xh_j| + |g_k|) + sum_j |M_kj| (rho max|d| + 4u^2 F), the
- * double-double t's own error rho included. Certified when the part beyond u|v_k| is below u
+ * TwoSums, the low parts to first order: |v_k - exact| <= u|v_k| + 20u^2
+ * (sum_j |M_kj xh_j| + |g_k|) + sum_j |M_kj| (rho max|d| + 48u^2 F) (the
+ * lows' tree of depth 4, x's rounding, the double-double t's own error
+ * rho). Certified when the part beyond u|v_k| is below u
  * of |v| (so the normal is within ~3u rad of the exact one, its
  * normalisation included); else the caller defers the crossing. prim -1,
  * the kind its root says.
@@ -288,7 +290,7 @@ static ALWAYS_INLINE vm quadric_lanes_record(const quadric_prep *qp, const lane_
         h->point[k] = vd_add(xh[k], xl[k]);
     vd dm = lane_max_abs3(d[0], d[1], d[2]);
     vd big_f = vd_add(lane_max_abs3(o[0], o[1], o[2]), vd_mul(vd_abs(rt->t_dd.hi), dm));
-    vd delta = vd_add(vd_mul(rt->rho, dm), vd_mul(vd_mul(vd_set1(4.0), u2), big_f));
+    vd delta = vd_add(vd_mul(rt->rho, dm), vd_mul(vd_mul(vd_set1(48.0), u2), big_f));
     vd v[3], gg = vd_zero(), ee = vd_zero();
     for (int k = 0; k < 3; k++) {
         vd m0 = vd_set1(qp->m[k][0]), m1 = vd_set1(qp->m[k][1]), m2 = vd_set1(qp->m[k][2]);
@@ -301,7 +303,7 @@ static ALWAYS_INLINE vm quadric_lanes_record(const quadric_prep *qp, const lane_
         v[k] = vd_add(s3.hi, lo);
         vd abs_sum = vd_add(vd_add(vd_abs(p0.hi), vd_abs(p1.hi)),
                             vd_add(vd_abs(p2.hi), vd_set1(fabs(qp->g[k]))));
-        vd e = vd_add(vd_mul(vd_mul(vd_set1(16.0), u2), abs_sum), vd_mul(vd_set1(qp->m_sum[k]), delta));
+        vd e = vd_add(vd_mul(vd_mul(vd_set1(20.0), u2), abs_sum), vd_mul(vd_set1(qp->m_sum[k]), delta));
         gg = vd_add(gg, vd_mul(v[k], v[k]));
         ee = vd_add(ee, vd_mul(e, e));
     }
