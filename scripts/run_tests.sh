@@ -41,10 +41,15 @@ done
 # The portable code that SSE replaces on x86-64 (BVH build and node test),
 # built with ISECT_NO_SIMD and held to the same mesh tests.
 step "mesh tests build without SIMD" make --no-print-directory -s B=$B/nosimd \
-    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once
+    OPT="-O2 -DISECT_NO_SIMD" $B/nosimd/tests/test_mesh $B/nosimd/tests/test_mesh_exactly_once \
+    $B/nosimd/tests/test_lanes
 for t in test_mesh test_mesh_exactly_once; do
     [ -x $B/nosimd/tests/$t ] && step "$t [no SIMD]" $B/nosimd/tests/$t
 done
+# The lane kernels' records in the portable build are the SIMD build's, bit
+# for bit: test_lanes prints one digest of every record it checked.
+[ -x $B/nosimd/tests/test_lanes ] && step "test_lanes digest [no SIMD] = [SIMD]" sh -c \
+    "a=\$($B/tests/test_lanes 400000 | grep digest); b=\$($B/nosimd/tests/test_lanes 400000 | grep digest); echo \"\$a / \$b\"; [ -n \"\$a\" ] && [ \"\$a\" = \"\$b\" ]"
 # The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
 step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
     OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once
