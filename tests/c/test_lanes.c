@@ -85,6 +85,7 @@ typedef struct test_shape {
     isect_xform xform;
     double      center[3], size;
     double      planes[32]; /* a convex polyhedron's */
+    isect_opts  opts;  /* the options of every query */
 } test_shape;
 
 static void shape_plane(test_shape *ts, const char *name, double nx, double ny, double nz,
@@ -198,6 +199,67 @@ static void shape_polygon(test_shape *ts, const char *name, int n, int concave, 
     ts->size = r > 0.0 ? r : 1.0;
 }
 
+static void shape_ellipsoid(test_shape *ts, const char *name, const double c[3],
+                            const double radii[3])
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    for (int k = 0; k < 3; k++) {
+        ts->numbers[k] = ts->center[k] = c[k];
+        ts->numbers[3 + k] = radii[k];
+        ts->size = radii[k] > ts->size ? radii[k] : ts->size;
+    }
+    ts->shape.type = ISECT_ELLIPSOID;
+    ts->shape.data = ts->numbers;
+}
+
+static void shape_cylinder(test_shape *ts, const char *name, int32_t type, const double p[3],
+                           const double q[3], double r, int32_t flags)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->shape.type = type;
+    ts->shape.flags = flags;
+    ts->shape.data = ts->numbers;
+    for (int k = 0; k < 3; k++) {
+        ts->numbers[k] = p[k];
+        ts->numbers[3 + k] = q[k];
+    }
+    ts->numbers[6] = r;
+    double len = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double a = type == ISECT_CYLINDER ? q[k] - p[k] : q[k];
+        ts->center[k] = type == ISECT_CYLINDER ? 0.5 * (p[k] + q[k]) : p[k];
+        len += a * a;
+    }
+    ts->size = r + (type == ISECT_CYLINDER ? 0.5 * sqrt(len) : 2.0 * r);
+}
+
+static void shape_quadric(test_shape *ts, const char *name, const double q[10], const double c[3],
+                          double size)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->name = name;
+    ts->shape.type = ISECT_QUADRIC;
+    ts->shape.data = ts->numbers;
+    memcpy(ts->numbers, q, 10 * sizeof *q);
+    memcpy(ts->center, c, sizeof ts->center);
+    ts->size = size;
+}
+
+/* Puts ts under the object-to-world matrix m; the centre and size for
+ * aiming become those of its world image (surface_point maps its
+ * object-space points by m). */
+static void shape_transform(test_shape *ts, const double m[16])
+{
+    CHECK(isect_xform_init(&ts->xform, m) == ISECT_OK);
+    ts->shape.xform = &ts->xform;
+    double c[3] = { ts->center[0], ts->center[1], ts->center[2] };
+    for (int i = 0; i < 3; i++)
+        ts->center[i] = m[4 * i] * c[0] + m[4 * i + 1] * c[1] + m[4 * i + 2] * c[2] + m[4 * i + 3];
+    ts->size *= 2.0;
+}
+
 /* A point near the surface of ts (object space == world space for the
  * untransformed shapes). */
 static void surface_point(const test_shape *ts, double p[3])
@@ -250,6 +312,44 @@ static void surface_point(const test_shape *ts, double p[3])
             double e = v[3 * i + k] + s * (v[3 * j + k] - v[3 * i + k]);
             p[k] = e + in * (ts->center[k] - e);
         }
+        break;
+    }
+    case ISECT_ELLIPSOID:
+        for (int k = 0; k < 3; k++)
+            p[k] = ts->numbers[k] + ts->numbers[3 + k] * d[k];
+        break;
+    case ISECT_CYLINDER:
+    case ISECT_CYLINDER_INF: { /* on the side, or (capped) on a cap, or on a rim */
+        const double *p0 = ts->numbers, r = ts->numbers[6];
+        double a[3], e[3], len = 0.0, s = 0.5 * (rng_unit() + 1.0), rho = r;
+        for (int k = 0; k < 3; k++)
+            a[k] = ts->shape.type == ISECT_CYLINDER ? ts->numbers[3 + k] - p0[k] : ts->numbers[3 + k];
+        for (int k = 0; k < 3; k++) { /* e = unit(d x a), perpendicular to the axis */
+            e[k] = d[(k + 1) % 3] * a[(k + 2) % 3] - d[(k + 2) % 3] * a[(k + 1) % 3];
+            len += e[k] * e[k];
+        }
+        len = sqrt(len);
+        switch (rng_next() % 4) {
+        case 0: s = rng_next() % 2; rho = r * 0.5 * (rng_unit() + 1.0); break; /* a cap */
+        case 1: s = rng_next() % 2; break;                                    /* a rim */
+        default: break;
+        }
+        if (ts->shape.type == ISECT_CYLINDER_INF)
+            s = 2.0 * rng_unit();
+        for (int k = 0; k < 3; k++)
+            p[k] = p0[k] + s * a[k] + rho * e[k] / len;
+        break;
+    }
+    case ISECT_QUADRIC: { /* a crossing of a line through the aiming box */
+        isect_shape object = ts->shape;
+        object.xform = NULL;
+        isect_ray line = { { 0 }, { d[0], d[1], d[2] }, -INFINITY, INFINITY };
+        for (int k = 0; k < 3; k++)
+            line.org[k] = ts->center[k] + 0.5 * ts->size * rng_unit();
+        isect_hit h[4];
+        int n = isect_intersect(&object, &line, NULL, h, 4);
+        for (int k = 0; k < 3; k++)
+            p[k] = n > 0 ? h[rng_next() % (uint64_t)(n < 4 ? n : 4)].point[k] : line.org[k];
         break;
     }
     default:
@@ -324,7 +424,7 @@ static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
     case INTERVAL: { /* a crossing near tmin or tmax */
         make_ray(ts, RANDOM, r);
         isect_hit h[4];
-        int n = isect_intersect(&ts->shape, r, NULL, h, 4);
+        int n = isect_intersect(&ts->shape, r, &ts->opts, h, 4);
         if (n > 0) {
             double t = h[rng_next() % (uint64_t)(n < 4 ? n : 4)].t;
             int k = (int)(rng_next() % 9) - 4;
@@ -352,11 +452,11 @@ static void make_ray(const test_shape *ts, enum ray_class cls, isect_ray *r)
 
 /* The record isect_intersect_batch must write for ray r: the first hit of
  * the scalar call, or MISS / INVALID as isect.h defines them. */
-static void scalar_record(const isect_shape *s, const isect_ray *r, const isect_opts *o,
+static void scalar_record(const isect_shape *s, const isect_ray *r, const isect_opts *opts,
                           isect_hit *out)
 {
     isect_hit h[8];
-    int n = isect_intersect(s, r, o, h, 8);
+    int n = isect_intersect(s, r, opts, h, 8);
     if (n > 0) {
         *out = h[0];
         return;
@@ -380,7 +480,7 @@ static void digest_add(const void *p, size_t n)
 
 static const char *const levels[] = { "scalar", "sse2", "avx2", "avx512" };
 
-static void test_shape_rays(const test_shape *ts, int64_t n, const isect_opts *o)
+static void test_shape_rays(const test_shape *ts, int64_t n)
 {
     isect_ray *rays = malloc((size_t)n * sizeof *rays);
     isect_hit *want = malloc((size_t)n * sizeof *want);
@@ -392,7 +492,7 @@ static void test_shape_rays(const test_shape *ts, int64_t n, const isect_opts *o
     }
     for (int64_t i = 0; i < n; i++) {
         make_ray(ts, (enum ray_class)(i % CLASSES), &rays[i]);
-        scalar_record(&ts->shape, &rays[i], o, &want[i]);
+        scalar_record(&ts->shape, &rays[i], &ts->opts, &want[i]);
     }
     int64_t want_hits = 0;
     for (int64_t i = 0; i < n; i++)
@@ -400,14 +500,14 @@ static void test_shape_rays(const test_shape *ts, int64_t n, const isect_opts *o
     for (int lv = 0; lv < 4; lv++) {
         setenv("ISECT_SIMD", levels[lv], 1);
         memset(got, 0xA5, (size_t)n * sizeof *got);
-        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, o, got);
+        int64_t hits = isect_intersect_batch(&ts->shape, rays, n, &ts->opts, got);
         CHECK_EQ_INT(hits, want_hits);
         int64_t bad = 0;
         for (int64_t i = 0; i < n; i++) {
             if (memcmp(&got[i], &want[i], sizeof got[i]) != 0) {
                 if (bad++ < 3)
                     fprintf(stderr, "%s%s [%s] ray %lld (class %d): batch t=%.17g kind=%d, "
-                            "scalar t=%.17g kind=%d\n", ts->name, o ? " (culled)" : "",
+                            "scalar t=%.17g kind=%d\n", ts->name, ts->opts.flags & ISECT_CULL_BACK ? " (culled)" : "",
                             levels[lv], (long long)i, (int)(i % CLASSES), got[i].t, got[i].kind,
                             want[i].t, want[i].kind);
             }
@@ -441,7 +541,7 @@ int main(int argc, char **argv)
     int64_t n = argc > 1 ? atoll(argv[1]) : 20000;
     if (n < CLASSES)
         n = CLASSES;
-    enum { SHAPES = 25 };
+    enum { SHAPES = 55 };
     static test_shape shapes[SHAPES];
     shape_sphere(&shapes[0], "unit sphere", 0.0, 0.0, 0.0, 1.0);
     shape_sphere(&shapes[1], "small far sphere", 1e7, -3e6, 2.5e6, 1e-3);
@@ -506,14 +606,86 @@ int main(int argc, char **argv)
     shape_polygon(&shapes[22], "concave polygon (nonzero)", 12, 1, ISECT_NONZERO, pc, pu, pw, 1.0);
     shape_polygon(&shapes[23], "small far polygon", 9, 1, ISECT_EVEN_ODD, fc, pu, pw, 1e-3);
     shape_polygon(&shapes[24], "degenerate polygon", 5, 0, ISECT_EVEN_ODD, pc, pu, pu, 1.0);
-    isect_opts cull = ISECT_OPTS_INIT;
-    cull.flags = ISECT_CULL_BACK;
+    static const double e_c[5][3] = { { 0.0, 0.1, -0.1 }, { 1e7, -3e6, 2.5e6 }, { -1e9, 2e9, 0.5 },
+                                      { 1e-150, 2e-150, -1e-150 }, { 1.0, 2.0, 3.0 } };
+    static const double e_r[5][3] = { { 1.2, 0.7, 0.9 }, { 1e-3, 3e-3, 2e-4 }, { 3e8, 1e8, 5e8 },
+                                      { 1e-151, 3e-151, 2e-151 }, { 0.75, 0.3, 1.5 } };
+    shape_ellipsoid(&shapes[25], "ellipsoid", e_c[0], e_r[0]);
+    shape_ellipsoid(&shapes[26], "small far ellipsoid", e_c[1], e_r[1]);
+    shape_ellipsoid(&shapes[27], "huge ellipsoid", e_c[2], e_r[2]);
+    shape_ellipsoid(&shapes[28], "tiny ellipsoid", e_c[3], e_r[3]);
+    shape_ellipsoid(&shapes[29], "transformed ellipsoid", e_c[4], e_r[4]);
+    shape_transform(&shapes[29], m);
+    static const double e_flat[3] = { 1.0, 1e-20, 2.0 }, e_long[3] = { 1e6, 1.0, 1.0 };
+    shape_ellipsoid(&shapes[30], "flat ellipsoid", e_c[0], e_flat);
+    shape_ellipsoid(&shapes[31], "long ellipsoid", e_c[4], e_long);
+    static const double c_p[6][3] = { { -0.3, -0.6, -0.9 }, { -0.31, -0.57, -0.93 },
+                                      { 1e6, 2e6, -3e6 }, { -1e9, 2e9, 0.5 },
+                                      { 1e-150, 2e-150, -1e-150 }, { 0.1, 0.2, 0.3 } };
+    static const double c_q[6][3] = { { 0.3, 0.6, 0.9 }, { 0.61, 0.97, 0.83 },
+                                      { 1e6 + 3e-3, 2e6 + 1e-3, -3e6 - 2e-3 }, { -1e9 + 3e8, 2e9, 5e8 },
+                                      { 3e-150, 2e-150, -1e-150 }, { 100.1, 0.2, 0.3 } };
+    static const double c_r[6] = { 0.6, 0.37, 1e-3, 2e8, 1e-151, 0.25 };
+    static const char *const c_names[2][6] = {
+        { "capped cylinder", "capped cylinder 2", "small far capped cylinder", "huge capped cylinder",
+          "tiny capped cylinder", "long capped cylinder" },
+        { "open cylinder", "open cylinder 2", "small far open cylinder", "huge open cylinder",
+          "tiny open cylinder", "long open cylinder" } };
+    for (int i = 0; i < 6; i++) {
+        shape_cylinder(&shapes[32 + i], c_names[0][i], ISECT_CYLINDER, c_p[i], c_q[i], c_r[i], ISECT_CAPPED);
+        shape_cylinder(&shapes[38 + i], c_names[1][i], ISECT_CYLINDER, c_p[i], c_q[i], c_r[i], 0);
+    }
+    static const double i_p[2][3] = { { 0.1, 0.0, 0.0 }, { 1e6, 2e6, -3e6 } };
+    static const double i_a[2][3] = { { 0.2, 0.3, 1.0 }, { 1e-3, 7.0, -2.0 } };
+    shape_cylinder(&shapes[44], "infinite cylinder", ISECT_CYLINDER_INF, i_p[0], i_a[0], 0.7, 0);
+    shape_cylinder(&shapes[45], "thin far infinite cylinder", ISECT_CYLINDER_INF, i_p[1], i_a[1], 1e-2, 0);
+    shape_cylinder(&shapes[46], "transformed capped cylinder", ISECT_CYLINDER, c_p[1], c_q[1], 0.37,
+                   ISECT_CAPPED);
+    shape_transform(&shapes[46], m);
+    shape_cylinder(&shapes[47], "transformed infinite cylinder", ISECT_CYLINDER_INF, i_p[0], i_a[0],
+                   0.7, 0);
+    shape_transform(&shapes[47], m);
+    static const double hyperboloid[10] = { 1.0, 2.0, -1.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, -0.5 };
+    static const double cone[10] = { 1.0, 1.0, -1.0, 0.0, 0.0, 0.0, -0.2, -0.4, 0.6, -0.04 };
+    static const double paraboloid[10] = { 1.0, 0.5, 0.0, 0.1, 0.0, 0.0, 0.0, 0.0, -1.0, -0.3 };
+    static const double general[10] = { 1.1, 0.9, 1.3, 0.2, -0.3, 0.1, 0.05, -0.07, 0.11, -1.0 };
+    static const double far_ball[10] = { 1.0, 2.0, 3.0, 0.0, 0.0, 0.0, -2e3, 0.0, 0.0, 1e6 - 1.0 };
+    static const double tiny[10] = { 1e30, 2e30, -1e30, 0.5e30, 0.0, 0.0, 0.0, 0.0, 0.0, -0.5 };
+    static const double ball_c[3] = { 1e3, 0.0, 0.0 };
+    static const double cone_c[3] = { 0.1, 0.2, -0.3 }, tiny_c[3] = { 0.0, 0.0, 0.0 };
+    shape_quadric(&shapes[48], "hyperboloid", hyperboloid, origin, 2.0);
+    shape_quadric(&shapes[49], "cone", cone, cone_c, 2.0);
+    shape_quadric(&shapes[50], "paraboloid", paraboloid, origin, 2.0);
+    shape_quadric(&shapes[51], "general quadric", general, origin, 2.0);
+    shape_quadric(&shapes[52], "far ellipsoid quadric", far_ball, ball_c, 1.0);
+    shape_quadric(&shapes[53], "tiny hyperboloid", tiny, tiny_c, 2e-15);
+    shape_quadric(&shapes[54], "transformed hyperboloid", hyperboloid, origin, 2.0);
+    shape_transform(&shapes[54], m);
+    /* options: the default, and on some shapes eps = 0, a large eps, and
+     * back-face culling (thin surfaces drop EXIT hits) */
     for (int i = 0; i < SHAPES; i++) {
-        test_shape_rays(&shapes[i], n, NULL);
+        isect_opts o = ISECT_OPTS_INIT;
+        shapes[i].opts = o;
+    }
+    shapes[1].opts.eps = 0.0;
+    shapes[6].opts.flags = ISECT_CULL_BACK;
+    shapes[26].opts.eps = 1e-6;
+    shapes[33].opts.eps = 0.0;
+    shapes[38].opts.flags = ISECT_CULL_BACK;
+    shapes[39].opts.eps = 1e-6;
+    shapes[43].opts.flags = ISECT_CULL_BACK;
+    shapes[45].opts.eps = 0.0;
+    shapes[49].opts.eps = 0.0;
+    shapes[51].opts.eps = 1e-6;
+    for (int i = 0; i < SHAPES; i++) {
+        test_shape_rays(&shapes[i], n);
         int thin = shapes[i].shape.type == ISECT_PLANE || shapes[i].shape.type == ISECT_TRIANGLE
                 || shapes[i].shape.type == ISECT_POLYGON;
-        if (thin)
-            test_shape_rays(&shapes[i], n / 4, &cull);
+        if (thin && shapes[i].opts.flags == 0) { /* the faces under CULL_BACK too */
+            test_shape cull = shapes[i];
+            cull.opts.flags = ISECT_CULL_BACK;
+            test_shape_rays(&cull, n / 4);
+        }
     }
     printf("digest %016llx\n", (unsigned long long)digest);
     return check_summary();

@@ -44,9 +44,9 @@ KNOWN_OVER_CONTRACT: dict[tuple[str, str], str] = {
     ("xf_box", "decisions"): XF + "far, grazing, tangent, surface, secondary",
     ("xf_triangle", "t"): XF + "random, grazing, tangent, surface, secondary",
     ("xf_triangle", "decisions"): XF + "grazing, tangent, surface",
-    ("xf_cylinder", "t"): XF + "random, grazing, tangent, surface, secondary",
-    ("xf_cylinder", "decisions"): XF + "grazing, tangent, surface, secondary",
-    ("xf_cylinder", "point"): XF + "random, tangent",
+    ("xf_cylinder", "t"): XF + "random, grazing, tangent, surface",
+    ("xf_cylinder", "decisions"): XF + "grazing, tangent, surface",
+    ("xf_cylinder", "point"): XF + "tangent",
     ("xf_cylinder", "angle"): XF + "random, far, grazing, tangent, surface",
 }
 

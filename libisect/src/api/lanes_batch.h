@@ -13,6 +13,9 @@
 #include "prim/sphere_lanes.h"
 #include "prim/triangle_lanes.h"
 #include "prim/polygon_lanes.h"
+#include "prim/ellipsoid_lanes.h"
+#include "prim/cylinder_lanes.h"
+#include "prim/quadric_lanes.h"
 
 #define LANES_CAT2(a, b) a##_##b
 #define LANES_CAT(a, b) LANES_CAT2(a, b)
@@ -23,15 +26,6 @@
  * (NULL: none), and the first hit of LANE_W object-space rays. */
 typedef vm (*lanes_screen)(const void *prep, const lane_ray *r);
 typedef void (*lanes_kernel)(const void *prep, const lane_ray *r, lane_hit *h);
-
-static ALWAYS_INLINE vm LANES_FN(screen_sphere)(const void *prep, const lane_ray *r)
-{
-    return sphere_lanes_screen((const sphere_prep *)prep, r);
-}
-static ALWAYS_INLINE void LANES_FN(kernel_sphere)(const void *prep, const lane_ray *r, lane_hit *h)
-{
-    sphere_lanes_first((const sphere_prep *)prep, r, h);
-}
 
 static ALWAYS_INLINE void LANES_FN(kernel_plane)(const void *prep, const lane_ray *r, lane_hit *h)
 {
@@ -271,15 +265,36 @@ static ALWAYS_INLINE int64_t LANES_FN(loop)(lanes_screen screen, lanes_kernel ke
     return hit_count;
 }
 
-static int64_t LANES_FN(batch_sphere)(const shape_family *f, const isect_shape *s,
-                                      const isect_ray *rays, int64_t n, const isect_params *prm,
-                                      isect_hit *closest)
-{
-    sphere_prep sp;
-    sphere_prepare(s->data, prm->eps, &sp);
-    return LANES_FN(loop)(LANES_FN(screen_sphere), LANES_FN(kernel_sphere), &sp, f, s, rays, n,
-                          prm, closest);
-}
+/*
+ * A shape with a screen: X_lanes_screen and X_lanes_first over its
+ * constants (type PREP_T), prepared once per batch by the statement
+ * PREPARE (of s, prm, prep), run by the loop.
+ */
+#define LANES_SHAPE(X, PREP_T, PREPARE)                                                        \
+    static ALWAYS_INLINE vm LANES_FN(screen_##X)(const void *prep, const lane_ray *r)         \
+    {                                                                                          \
+        return X##_lanes_screen((const PREP_T *)prep, r);                                      \
+    }                                                                                          \
+    static ALWAYS_INLINE void LANES_FN(kernel_##X)(const void *prep, const lane_ray *r,       \
+                                                   lane_hit *h)                                \
+    {                                                                                          \
+        X##_lanes_first((const PREP_T *)prep, r, h);                                           \
+    }                                                                                          \
+    static int64_t LANES_FN(batch_##X)(const shape_family *f, const isect_shape *s,           \
+                                       const isect_ray *rays, int64_t n,                       \
+                                       const isect_params *prm, isect_hit *closest)            \
+    {                                                                                          \
+        PREP_T prep;                                                                           \
+        PREPARE;                                                                               \
+        return LANES_FN(loop)(LANES_FN(screen_##X), LANES_FN(kernel_##X), &prep, f, s, rays,   \
+                              n, prm, closest);                                                \
+    }
+
+LANES_SHAPE(sphere, sphere_prep, sphere_prepare(s->data, prm->eps, &prep))
+LANES_SHAPE(ellipsoid, ellipsoid_prep, ellipsoid_prepare(s->data, prm->eps, &prep))
+LANES_SHAPE(cylinder, cylinder_prep,
+            cylinder_prepare(s->data, cylinder_kind(s->type, s->flags), prm->eps, &prep))
+LANES_SHAPE(quadric, quadric_prep, quadric_prepare(s->data, prm->eps, &prep))
 
 static int64_t LANES_FN(batch_plane)(const shape_family *f, const isect_shape *s,
                                      const isect_ray *rays, int64_t n, const isect_params *prm,
@@ -342,6 +357,13 @@ lanes_batch_fn LANES_FN(lanes_batch)(int32_t type)
         return LANES_FN(batch_box);
     case ISECT_CONVEX:
         return LANES_FN(batch_convex);
+    case ISECT_ELLIPSOID:
+        return LANES_FN(batch_ellipsoid);
+    case ISECT_CYLINDER:
+    case ISECT_CYLINDER_INF:
+        return LANES_FN(batch_cylinder);
+    case ISECT_QUADRIC:
+        return LANES_FN(batch_quadric);
     default:
         return NULL;
     }

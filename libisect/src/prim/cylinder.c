@@ -51,6 +51,7 @@
  * point to a few ulps; a cap's normal -+unit(a).
  */
 #include "prim/prim.h"
+#include "prim/cylinder_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
@@ -484,6 +485,36 @@ static int side_hits(cyl_line *ln, int clip_to_caps, const isect_ray *ray,
     return count;
 }
 
+/* ------------------------------------------------------- fast kernels */
+
+/* Crossing i of the solved kernel (lane_pair_hits). */
+static int kernel_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                         lane_hit *h)
+{
+    const cyl_lanes *cl = solved;
+    cylinder_lanes_record(prep, ray, &cl->root[i], cl->prim[i], i == 1, h);
+    return 1;
+}
+
+/* The fast kernel (cylinder_lanes.h) on one ray, as the batch runs it, then
+ * the exact path for what it leaves undecided. */
+static int kernel_hits(const isect_shape *s, lane_exact_fn exact, const isect_ray *ray,
+                       const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
+{
+    cylinder_prep cp;
+    cylinder_prepare(s->data, cylinder_kind(s->type, s->flags), prm->eps, &cp);
+    if (cp.degenerate)
+        return 0;
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (!cylinder_lanes_screen(&cp, &lr))
+        return 0;
+    cyl_lanes cl;
+    cylinder_lanes_solve(&cp, &lr, 0, &cl);
+    static const int32_t kinds[2] = { ISECT_ENTER, ISECT_EXIT };
+    return lane_pair_hits(&cl.pr, kinds, kernel_record, &cp, &lr, &cl, exact, s, ray, prm, out);
+}
+
 /* ------------------------------------------------------- finite cylinder */
 
 int cylinder_check(const isect_shape *s)
@@ -495,8 +526,9 @@ int cylinder_check(const isect_shape *s)
     return s->data[6] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
-int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                  isect_hit out[ISECT_MAX_HITS])
+/* The exact path of the finite cylinders: certified, else exact. */
+static int cylinder_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                          isect_hit out[ISECT_MAX_HITS])
 {
     cyl_frame fr;
     if (!frame_finite(s->data, ray->org, ray->dir, &fr))
@@ -506,6 +538,12 @@ int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params
     if (s->flags & ISECT_CAPPED)
         return capped_hits(&ln, ray, out);
     return side_hits(&ln, 1, ray, out);
+}
+
+int cylinder_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                  isect_hit out[ISECT_MAX_HITS])
+{
+    return kernel_hits(s, cylinder_exact, ray, prm, out);
 }
 
 /* The point's signs: outside the side (C), below cap 0 (-F0), above cap 1
@@ -555,8 +593,8 @@ int cylinder_inf_check(const isect_shape *s)
     return s->data[6] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
-int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                      isect_hit out[ISECT_MAX_HITS])
+static int cylinder_inf_exact(const isect_shape *s, const isect_ray *ray,
+                              const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
 {
     cyl_frame fr;
     if (!frame_infinite(s->data, ray->org, ray->dir, &fr))
@@ -565,6 +603,12 @@ int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_pa
     line_make(&fr, prm->eps, &ln);
     /* parallel: inside or outside along the whole line, no crossing */
     return side_hits(&ln, 0, ray, out);
+}
+
+int cylinder_inf_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                      isect_hit out[ISECT_MAX_HITS])
+{
+    return kernel_hits(s, cylinder_inf_exact, ray, prm, out);
 }
 
 int cylinder_inf_contains(const isect_shape *s, const double p[3])

@@ -33,6 +33,7 @@
  * the largest) is degenerate: no hits, nothing inside.
  */
 #include "prim/prim.h"
+#include "prim/ellipsoid_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
@@ -65,20 +66,14 @@ static int frame_make(const double *data, const double org[3], const double dir[
     return fr->rho_min > 0.0;
 }
 
-/* mu_k = (rho_min / rho_k)^2 as a dd with its bound: the quotient's
- * residual rho_min - x rho_k is exact up to one rounding (Sterbenz and
- * TwoProduct), so x = hi + lo is within 2u^2 x. */
+/* mu_k = (rho_min / rho_k)^2 as a dd with its bound (ellipsoid_lanes.h:
+ * ellipsoid_weight, within 12u^2 mu). */
 static ddx weight(double rho_min, double rho_k)
 {
-    if (rho_k == rho_min)
-        return ddx_of(1.0);
-    double hi = rho_min / rho_k;
-    double p = hi * rho_k;
-    double residual = (rho_min - p) - product_error(hi, rho_k, p);
-    ddx x = { hi, residual / rho_k, 0.0 };
-    x = ddx_add(x, ddx_of(0.0)); /* renormalise */
-    x.err = 4.0 * DDX_U * DDX_U * hi + DDX_TINY;
-    return ddx_sqr(x);
+    ddx mu;
+    ellipsoid_weight(rho_min, rho_k, &mu.hi, &mu.lo);
+    mu.err = rho_k == rho_min ? 0.0 : 12.0 * DDX_U * DDX_U * mu.hi + DDX_TINY;
+    return mu;
 }
 
 static void line_dd(const ellipsoid_frame *fr, double eps, quad_line_dd *q)
@@ -144,8 +139,9 @@ int ellipsoid_check(const isect_shape *s)
     return radii[0] < 0.0 || radii[1] < 0.0 || radii[2] < 0.0 ? ISECT_E_ARG : ISECT_OK;
 }
 
-int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                   isect_hit out[ISECT_MAX_HITS])
+/* The exact path: certified from double-doubles, else exact. */
+static int ellipsoid_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                           isect_hit out[ISECT_MAX_HITS])
 {
     ellipsoid_frame fr;
     if (!frame_make(s->data, ray->org, ray->dir, &fr))
@@ -181,6 +177,35 @@ int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_param
         hit_set_dd(&out[count++], ray, t_hi, t_lo, normal, -1, kind);
     }
     return count;
+}
+
+/* Crossing i of the solved kernel (lane_pair_hits). */
+static int ellipsoid_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                            lane_hit *h)
+{
+    (void)prep;
+    ellipsoid_lanes_record(ray, &((const ellipsoid_lanes *)solved)->root[i], i == 1, h);
+    return 1;
+}
+
+/* The fast kernel (ellipsoid_lanes.h) on one ray, as the batch runs it,
+ * then the exact path for what it leaves undecided. */
+int ellipsoid_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                   isect_hit out[ISECT_MAX_HITS])
+{
+    ellipsoid_prep ep;
+    ellipsoid_prepare(s->data, prm->eps, &ep);
+    if (ep.degenerate)
+        return 0;
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    if (!ellipsoid_lanes_screen(&ep, &lr))
+        return 0;
+    ellipsoid_lanes el;
+    ellipsoid_lanes_solve(&ep, &lr, 0, &el);
+    static const int32_t kind[2] = { ISECT_ENTER, ISECT_EXIT };
+    return lane_pair_hits(&el.pr, kind, ellipsoid_record, &ep, &lr, &el, ellipsoid_exact, s, ray,
+                          prm, out);
 }
 
 /* Sum_k (p_k - c_k)^2 prod_{j != k} R_j^2 - prod R_j^2: the ellipsoid's

@@ -36,6 +36,24 @@ void hit_set_dd(isect_hit *h, const isect_ray *ray, double t_hi, double t_lo,
     }
 }
 
+int hits_merge(const isect_hit rec[2], const int decided[2], const int in[2],
+               const int32_t kind[2], const isect_hit *exact, int exact_count,
+               isect_hit out[ISECT_MAX_HITS])
+{
+    int count = 0;
+    for (int i = 0; i < 2; i++) {
+        if (decided[i]) {
+            if (in[i])
+                out[count++] = rec[i];
+            continue;
+        }
+        for (int k = 0; k < exact_count && count < ISECT_MAX_HITS; k++)
+            if (exact[k].kind == kind[i])
+                out[count++] = exact[k];
+    }
+    return count;
+}
+
 int32_t hit_kind_from_normal(const double dir[3], const double normal[3])
 {
     return v3_dot(dir, normal) < 0.0 ? ISECT_ENTER : ISECT_EXIT;

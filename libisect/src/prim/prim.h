@@ -50,6 +50,16 @@ void hit_set(isect_hit *h, const isect_ray *ray, double t, const double normal[3
 void hit_set_dd(isect_hit *h, const isect_ray *ray, double t_hi, double t_lo,
                 const double normal[3], int32_t prim, int32_t kind);
 
+/* The hits of a line from a fast kernel that decided its two crossings in
+ * part (prim_lanes.h: lane_pair), in kernel order: crossing i is rec[i]
+ * where decided[i] (reported when in[i]), else the exact path's hits of
+ * kind[i] (exact[0 .. exact_count); not read when both are decided). The
+ * exact path decides exactly as the kernel does where both decide, so the
+ * two agree on which crossings exist. Returns the count written to out. */
+int hits_merge(const isect_hit rec[2], const int decided[2], const int in[2],
+               const int32_t kind[2], const isect_hit *exact, int exact_count,
+               isect_hit out[ISECT_MAX_HITS]);
+
 /* ENTER/EXIT from the sign of dir.normal (normal outward or front-facing). */
 int32_t hit_kind_from_normal(const double dir[3], const double normal[3]);
 

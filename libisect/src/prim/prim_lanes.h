@@ -21,6 +21,7 @@
 #define ISECT_PRIM_LANES_H
 
 #include "core/eft.h"
+#include "prim/prim.h"
 
 /* LANE_W object-space rays. */
 typedef struct lane_ray {
@@ -178,14 +179,16 @@ static ALWAYS_INLINE vm lane_ray_in_range(const lane_ray *ray, double org_bound)
  * One certified Newton step on a quadratic line function (a sphere's,
  * ellipsoid's, cylinder's or general quadric's Q(o + t dir) = A t^2 + 2B t
  * + C), at a start t0: from r = Q(t0) (within e_r), p = Q'(t0)/2 (within
- * e_p) and a = A (with a_up >= |A|), the step sigma = r/(2p) (1 + c), c =
- * a r/(4p^2): Newton's step with the quadratic's own curvature term (the
- * exact small root of r + 2p h + a h^2 = 0 is -r/(2p) (1 + c + 2c^2 +
- * ...)), so the residual left at x = t0 - sigma is of third order, a sigma^2
- * |c| (2 + |c|), and a start off by u|t| lands within a tiny fraction of an
- * ulp. Kantorovich's bound for the quadratic is sharp and cheap: with eta
- * >= |Q(x)| (that term, the errors of r and p, and the step's roundings,
- * 16u |sigma| |p|) and m = 2(|p| - e_p - |a| |sigma|) <= |Q'(x)|, if
+ * e_p) and a = A (with a_up >= |A| and a_up - |a| >= |A - a|), the step
+ * sigma = r/(2p) (1 + c), c = a r/(4p^2): Newton's step with the
+ * quadratic's own curvature term (the exact small root of r + 2p h + a h^2
+ * = 0 is -r/(2p) (1 + c + 2c^2 + ...)), so the residual left at x = t0 -
+ * sigma is of third order, r c^2 (2 + c) = a sigma^2 c (2 + c)/(1 + c)^2,
+ * below 1.14 a sigma^2 |c| (2 + |c|) for |c| <= 1/16, and a start off by
+ * u|t| lands within a tiny fraction of an ulp. Kantorovich's bound for the
+ * quadratic is sharp and cheap: with eta >= |Q(x)| (that term, the errors
+ * of r and p, (A - a) sigma^2, and the step's roundings, 16u |sigma| |p|)
+ * and m = 2(|p| - e_p - |a| |sigma|) <= |Q'(x)|, if
  * 4 |a| eta <= m^2 there is exactly one root within rho = 2 eta/m of x,
  * and Q' keeps its sign there: the root is an entry into Q < 0 when p < 0.
  * Taken only when the shortfall (e_p + |a| |sigma|)/|p| <= 1/4 (so m >=
@@ -215,8 +218,11 @@ static ALWAYS_INLINE void lane_newton_certify(vd t0, vd r, vd e_r, vd p, vd e_p,
     vd c_abs = vd_abs(curv);
     vd inv_2p_abs = vd_mul(vd_abs(inv_2p), up);
     vd shortfall = vd_mul(vd_mul(vd_add(e_p, vd_mul(a_up, step_abs)), vd_set1(2.0)), inv_2p_abs);
-    vd curvature = vd_mul(vd_mul(a_up, vd_mul(step_abs, step_abs)),
-                          vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs)));
+    vd e_a = vd_mul(vd_sub(a_up, vd_abs(a)), up);
+    vd curvature = vd_mul(vd_mul(step_abs, step_abs),
+                          vd_add(vd_mul(vd_mul(vd_set1(1.14), a_up),
+                                        vd_mul(c_abs, vd_add(vd_set1(2.0), c_abs))),
+                                 e_a));
     vd eta = vd_add(vd_add(curvature, e_r),
                     vd_mul(vd_add(vd_add(e_p, e_p), vd_mul(vd_set1(16.0 * u), vd_abs(p))), step_abs));
     vm kantorovich = vd_le(vd_mul(vd_mul(vd_set1(4.0), a_up), eta),
@@ -262,17 +268,91 @@ static ALWAYS_INLINE vm lane_certainly_out(vd t, vd err, const lane_ray *r)
     return vm_or(vd_lt(vd_add(t, err), r->tmin), vd_gt(vd_sub(t, err), r->tmax));
 }
 
-/* o + t d for t = t.hi + t.lo, each coordinate summed exactly enough
- * (TwoProduct of t.hi d, TwoSum with o, the low parts rounded) that the one
- * final rounding is its only error: a point on the ray at a parameter
- * known to ~u^2, even where |o| is far larger than the point. */
-static ALWAYS_INLINE void lane_point_on_ray(const lane_ray *r, vdd t, vd out[3])
+/* o + t d for t = t.hi + t.lo as xh + xl per coordinate: TwoProduct of
+ * t.hi d, TwoSum with o (xh its head), the low parts summed and rounded
+ * once (xl): within u|xl| + |t.lo d| u, ~3u^2 (|o| + |t d|). */
+static ALWAYS_INLINE void lane_point_on_ray_dd(const lane_ray *r, vdd t, vd xh[3], vd xl[3])
 {
     for (int k = 0; k < 3; k++) {
         vdd p = two_prod(t.hi, r->dir[k]);
         vdd s = two_sum(r->org[k], p.hi);
-        out[k] = vd_add(s.hi, vd_add(vd_add(s.lo, p.lo), vd_mul(t.lo, r->dir[k])));
+        xh[k] = s.hi;
+        xl[k] = vd_add(vd_add(s.lo, p.lo), vd_mul(t.lo, r->dir[k]));
     }
+}
+
+/* The same rounded to doubles: the one final rounding is the only error,
+ * so a point on the ray at a parameter known to ~u^2 lies within its own
+ * ulp, even where |o| is far larger than the point. */
+static ALWAYS_INLINE void lane_point_on_ray(const lane_ray *r, vdd t, vd out[3])
+{
+    vd xh[3], xl[3];
+    lane_point_on_ray_dd(r, t, xh, xl);
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_add(xh[k], xl[k]);
+}
+
+/* f + t0 d for f exact as f.hi + f.lo (a difference of coordinates by
+ * TwoSum) and a double t0: vh the exact sum of f.hi and fl(t0 d), vl its
+ * error + f.lo + the product's error, rounded: within 8u^2 F per
+ * component, F = max|f.hi| + |t0| max|d|. The vector from a shape's point
+ * to the ray's point at t0, to ~u^2 of the larger of the two however
+ * much they cancel. */
+static ALWAYS_INLINE void lane_offset_at(const vdd f[3], vd t0, const vd d[3], vd vh[3], vd vl[3])
+{
+    for (int k = 0; k < 3; k++) {
+        vdd p = two_prod(t0, d[k]);
+        vdd sum = two_sum(f[k].hi, p.hi);
+        vh[k] = sum.hi;
+        vl[k] = vd_add(sum.lo, vd_add(f[k].lo, p.lo));
+    }
+}
+
+/*
+ * |vh + vl|^2 - (c_hi + c_lo) for a vector known as heads and small low
+ * parts: exact squares of the heads (TwoProduct), summed exactly with
+ * -c_hi (TwoSum), the low parts (the squares' errors, 2 vh.vl, |vl|^2, the
+ * sums' errors, -c_lo) rounded in a tree of depth <= 5. Bound of its own
+ * arithmetic: e = 32u^2 (S + c_hi) + 8u (2 V L + L^2) + u|R|, S the heads'
+ * rounded sum of squares, V = sum|vh_k|, L = sum|vl_k|; the caller adds
+ * the errors of vh + vl and of c, and ETA.
+ */
+typedef struct lane_sq3 {
+    vd r, e;
+    vd v_sum, l_sum;
+} lane_sq3;
+
+static ALWAYS_INLINE void lane_sq3_minus(const vd vh[3], const vd vl[3], double c_hi, double c_lo,
+                                         lane_sq3 *out)
+{
+    const double u = 0x1p-53;
+    vdd g0 = two_prod(vh[0], vh[0]), g1 = two_prod(vh[1], vh[1]), g2 = two_prod(vh[2], vh[2]);
+    vdd a = two_sum(g0.hi, g1.hi);
+    vdd b = two_sum(a.hi, g2.hi);
+    vdd c = two_sum(b.hi, vd_set1(-c_hi));
+    vd cross = vd_add(vd_add(vd_mul(vh[0], vl[0]), vd_mul(vh[1], vl[1])), vd_mul(vh[2], vl[2]));
+    vd sq_lo = vd_add(vd_add(vd_mul(vl[0], vl[0]), vd_mul(vl[1], vl[1])), vd_mul(vl[2], vl[2]));
+    vd lows = vd_add(vd_add(vd_add(a.lo, b.lo), vd_add(c.lo, vd_set1(-c_lo))),
+                     vd_add(vd_add(vd_add(g0.lo, g1.lo), g2.lo), vd_add(vd_add(cross, cross), sq_lo)));
+    out->r = vd_add(c.hi, lows);
+    out->v_sum = vd_add(vd_add(vd_abs(vh[0]), vd_abs(vh[1])), vd_abs(vh[2]));
+    out->l_sum = vd_add(vd_add(vd_abs(vl[0]), vd_abs(vl[1])), vd_abs(vl[2]));
+    vd v_sum = out->v_sum, l_sum = out->l_sum;
+    out->e = vd_add(vd_add(vd_mul(vd_set1(32.0 * u * u), vd_add(b.hi, vd_set1(c_hi))),
+                           vd_mul(vd_set1(8.0 * u), vd_add(vd_mul(vd_add(v_sum, v_sum), l_sum),
+                                                           vd_mul(l_sum, l_sum)))),
+                    vd_mul(vd_set1(u), vd_abs(out->r)));
+}
+
+/* v scaled by inv to nearly unit length (|v inv| = 1 + O(u)), then made
+ * unit by lane_unit_newton; never -0. */
+static ALWAYS_INLINE void lane_unit_scaled(const vd v[3], vd inv, vd out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_mul(v[k], inv);
+    lane_unit_newton(out);
+    for (int k = 0; k < 3; k++)
+        out[k] = vd_add(out[k], vd_zero());
 }
 
 /* t clamped into [tmin, tmax]: the parameter reported for a crossing
@@ -282,5 +362,280 @@ static ALWAYS_INLINE vd lane_clamp_t(vd t, const lane_ray *r)
 {
     return vd_min(vd_max(t, r->tmin), r->tmax);
 }
+
+/*
+ * -num/den for double-doubles num (within e_num) and den (within e_den),
+ * renormalised, den.hi != 0, given inv = fl(1/den.hi): t as a double-double
+ * (dd_mul_inv_dd: tau plus one correction, within 21u^2 |t| of the
+ * quotient of the two double-doubles) and err >= |t.hi - exact|, the
+ * first-order bound |t| (u + 40u^2 + e_den/|den|) + e_num/|den| (plane
+ * lanes' quotient), widened by 2^-9: it holds while e_den <= 2^-20 |den|,
+ * which `ok` says.
+ */
+typedef struct lane_quotient {
+    vdd t;
+    vd  err;
+    vm  ok;
+} lane_quotient;
+
+static ALWAYS_INLINE void lane_quotient_neg(vdd num, vd e_num, vdd den, vd e_den, vd inv,
+                                            lane_quotient *q)
+{
+    const double u = 0x1p-53;
+    vdd minus_num = { vd_neg(num.hi), vd_neg(num.lo) };
+    q->t = dd_mul_inv_dd(minus_num, den, inv);
+    vd inv_abs = vd_mul(vd_abs(inv), vd_set1(1.0 + 0x1p-9));
+    q->err = vd_mul(vd_add(vd_mul(vd_abs(q->t.hi), vd_add(vd_set1(u + 40.0 * u * u),
+                                                            vd_mul(e_den, inv_abs))),
+                           vd_mul(e_num, inv_abs)),
+                    vd_set1(1.0 + 0x1p-9));
+    q->ok = vd_le(e_den, vd_mul(vd_set1(0x1p-20), vd_abs(den.hi)));
+}
+
+/*
+ * Starting values for the two roots of A t^2 + 2B t + C from plain
+ * coefficients and the plain reduced discriminant G (any sign of A): never
+ * -B + sqrt(G) with B > 0 (Haines et al.), q = -(B + sign(B) sqrt(G)) and
+ * the roots q/A and C/q, both from one division, q/A = q^2/(qA), C/q =
+ * CA/(qA). The entry root r- = (-B - sqrt(G))/A (where Q' = -2 sqrt(G) < 0)
+ * is q/A when B >= 0, C/q when B < 0; the exit r+ the other. Only starting
+ * values: a NaN or infinity (q A = 0) fails the refinement's certificate.
+ */
+static ALWAYS_INLINE void lane_quad_starts(vd a, vd b, vd c, vd g, vd *t_enter, vd *t_exit)
+{
+    vd s = vd_sqrt(vd_max(g, vd_zero()));
+    vd q = vd_neg(vd_add(b, vd_copysign(s, b)));
+    vd inv = vd_div(vd_set1(1.0), vd_mul(q, a));
+    vd t_qa = vd_mul(vd_mul(q, q), inv), t_cq = vd_mul(vd_mul(c, a), inv);
+    vm b_neg = vd_lt(b, vd_zero());
+    *t_enter = vd_sel(b_neg, t_cq, t_qa);
+    *t_exit = vd_sel(b_neg, t_qa, t_cq);
+}
+
+/* A refined root's verdict against [tmin, tmax] (ok: its bound holds):
+ * certainly in and within 3.5u|t| (so t is within 4 ulp of the exact root:
+ * ulp(t) > u|t|), certainly outside, or neither. */
+static ALWAYS_INLINE vm lane_root_in(vm ok, vd t, vd err, const lane_ray *r)
+{
+    return vm_and(vm_and(ok, lane_certainly_in(t, err, r)),
+                  vd_le(err, vd_mul(vd_set1(3.5 * 0x1p-53), vd_abs(t))));
+}
+static ALWAYS_INLINE vm lane_root_out(vm ok, vd t, vd err, const lane_ray *r)
+{
+    return vm_and(ok, lane_certainly_out(t, err, r));
+}
+
+/* A crossing refined from a start by a shape's refinement step. */
+typedef struct lane_root {
+    vd  t, err;  /* the refined parameter, |t - exact| <= err (when ok) */
+    vdd t_dd;    /* the parameter as a double-double (t0 - step exactly) */
+    vd  rho;     /* |exact - t_dd| <= rho (when ok) */
+    vm  ok;      /* one root within err, and what the record needs certified */
+    vm  enter;   /* Q' < 0 there: into the inside */
+    vd  v[3];    /* the shape's vector at the root, for the normal */
+    vd  vv;      /* and a scalar (e.g. its squared length) */
+} lane_root;
+
+/* One certified Newton step (lane_newton_certify, arguments as there) as
+ * a root: t and its bound, t as a double-double (t0 - step exactly, within
+ * rho), its kind; ok is the certificate alone (a shape adds what its
+ * record needs). */
+static ALWAYS_INLINE void lane_root_newton(vd t0, vd r, vd e_r, vd p, vd e_p, vd a, vd a_up,
+                                           lane_newton *nt, lane_root *rt)
+{
+    lane_newton_certify(t0, r, e_r, p, e_p, a, a_up, nt);
+    rt->t = nt->t;
+    rt->err = nt->err;
+    rt->enter = nt->enter;
+    rt->t_dd = two_sum(t0, vd_neg(nt->step));
+    rt->rho = nt->rho;
+    rt->ok = nt->ok;
+    rt->vv = vd_zero();
+}
+
+/* The lanes of e where m, of f elsewhere. */
+static ALWAYS_INLINE void lane_root_sel(vm m, const lane_root *e, const lane_root *f, lane_root *out)
+{
+    out->t = vd_sel(m, e->t, f->t);
+    out->err = vd_sel(m, e->err, f->err);
+    out->t_dd.hi = vd_sel(m, e->t_dd.hi, f->t_dd.hi);
+    out->t_dd.lo = vd_sel(m, e->t_dd.lo, f->t_dd.lo);
+    out->rho = vd_sel(m, e->rho, f->rho);
+    out->ok = vm_or(vm_and(m, e->ok), vm_andnot(f->ok, m));
+    out->enter = vm_or(vm_and(m, e->enter), vm_andnot(f->enter, m));
+    for (int k = 0; k < 3; k++)
+        out->v[k] = vd_sel(m, e->v[k], f->v[k]);
+    out->vv = vd_sel(m, e->vv, f->vv);
+}
+
+/* A shape's refinement (one certified Newton step from t0, over its
+ * prepared constants and the ray's plain quantities), and an optional
+ * further condition on a crossing (a cylinder's slab): in / out certain. */
+typedef void (*lane_refine_fn)(const void *prep, const lane_ray *ray, const void *plain, vd t0,
+                               lane_root *rt);
+typedef void (*lane_clip_fn)(const void *data, const lane_root *rt, vm *in, vm *out);
+
+/*
+ * The verdicts on a line's two crossings (lower t first), shared by the
+ * quadric family's kernels. A crossing is reported (in) where its root is
+ * certified, of the kind expected of it, certainly in [tmin, tmax] and
+ * within 3.5u|t|, and inside whatever the clip requires; certainly not
+ * (out) where certified and certainly outside either. The upper crossing
+ * is refined only where needed: for the first hit when the lower one is
+ * out but not certainly after tmax, for all hits unless it is. decided[i]
+ * says in[i] is certain; a crossing decided here is decided the same way,
+ * with the same record, in every query, so a scalar all-hits path asks its
+ * exact path only for the undecided ones (hits_merge).
+ */
+typedef struct lane_pair {
+    vm plain_slow;  /* nothing decided (maybe tangent, out of range, ...) */
+    vm slow;        /* the first hit is not decided */
+    vm in[2];       /* lower, upper: reported */
+    vm decided[2];  /* in[i] is certain (crossing i absent, out or in) */
+} lane_pair;
+
+/* What the plain solve knows. */
+typedef struct lane_pair_plain {
+    vm cross;       /* two crossings, certainly (else none, unless slow) */
+    vm slow;        /* undecided: maybe tangent, out of range, ... */
+    vm none;        /* the shape is degenerate: never hit */
+    vm lo_enter;    /* the lower root is the entry (A > 0) */
+    vd g_low;       /* <= the reduced discriminant G = B^2 - AC */
+    vd a_up;        /* >= |A| */
+    vd t_lo, t_hi;  /* starting values, lower root first */
+} lane_pair_plain;
+
+/*
+ * Whether the two roots x < y of A t^2 + 2B t + C are more than 16u
+ * max(|x|, |y|) apart, from a lower bound g_low > 0 of the reduced
+ * discriminant (y - x = 2 sqrt(G)/|A|), a_up >= |A| and one root known to
+ * lie within err of t: if neither root is twice the other, y - x > 32u
+ * |t|-ish suffices, and otherwise y - x >= max/2 anyway. Then any values
+ * within 4 ulp (8u) of the roots, from a kernel or from an exact path, and
+ * clamped into [tmin, tmax] (monotone), keep the roots' order, so the
+ * scalar call sorts the crossings as the batch assumes.
+ */
+static ALWAYS_INLINE vm lane_roots_apart(vd g_low, vd a_up, vd t, vd err)
+{
+    vd x = vd_mul(vd_mul(vd_set1(16.0 * 0x1p-53 * (1.0 + 0x1p-40)), vd_add(vd_abs(t), err)), a_up);
+    return vd_gt(g_low, vd_mul(x, x));
+}
+
+static ALWAYS_INLINE vm lane_pair_need_hi(vm cross, vm lo_out, vm lo_beyond, int first)
+{
+    return vm_and(cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
+}
+
+/* cross: two crossings, certainly; apart: they are far enough apart to
+ * keep their order (a pair that is not defers); lo_ and hi_ in / out as
+ * above (hi_ only where need_hi). */
+static ALWAYS_INLINE void lane_pair_decide(vm plain_slow, vm none, vm cross, vm apart, vm lo_in,
+                                           vm lo_out, vm need_hi, vm hi_in, vm hi_out, lane_pair *pr)
+{
+    plain_slow = vm_or(plain_slow, vm_andnot(cross, apart));
+    vm lo_decided = vm_or(vm_not(cross), vm_or(lo_in, lo_out));
+    vm hi_decided = vm_or(vm_not(need_hi), vm_or(hi_in, hi_out));
+    pr->plain_slow = vm_andnot(plain_slow, none);
+    pr->decided[0] = vm_or(none, vm_andnot(lo_decided, plain_slow));
+    pr->decided[1] = vm_or(none, vm_andnot(vm_and(hi_decided, lo_decided), plain_slow));
+    pr->in[0] = vm_andnot(vm_and(cross, lo_in), none);
+    pr->in[1] = vm_andnot(vm_and(need_hi, hi_in), none);
+    pr->slow = vm_or(pr->plain_slow, vm_not(vm_and(pr->decided[0], pr->decided[1])));
+}
+
+/* One crossing's verdicts: its root of the kind `enter` says, in and out. */
+static ALWAYS_INLINE vm lane_pair_verdict(const lane_root *rt, vm enter, lane_clip_fn clip,
+                                          const void *clip_data, const lane_ray *ray, vm *in,
+                                          vm *out)
+{
+    vm kind = vm_or(vm_and(rt->enter, enter), vm_andnot(vm_not(rt->enter), enter));
+    vm ok = vm_and(rt->ok, kind);
+    *in = lane_root_in(ok, rt->t, rt->err, ray);
+    *out = lane_root_out(ok, rt->t, rt->err, ray);
+    vm beyond = vm_and(*out, vd_gt(rt->t, ray->tmax));
+    if (clip != NULL) {
+        vm c_in, c_out;
+        clip(clip_data, rt, &c_in, &c_out);
+        *in = vm_and(*in, c_in);
+        *out = vm_or(*out, vm_and(ok, c_out));
+    }
+    return beyond;
+}
+
+/* The two crossings: the lower refined always, the upper where needed;
+ * reported parameters clamped into [tmin, tmax] (+0, never -0). */
+static ALWAYS_INLINE void lane_pair_solve(lane_refine_fn refine, const void *prep,
+                                          const void *plain, lane_clip_fn clip,
+                                          const void *clip_data, const lane_pair_plain *pl,
+                                          const lane_ray *ray, int first, lane_root root[2],
+                                          lane_pair *pr)
+{
+    lane_root *lo = &root[0], *hi = &root[1];
+    vm lo_in, lo_out, hi_in = vm_false(), hi_out = vm_false();
+    refine(prep, ray, plain, pl->t_lo, lo);
+    vm lo_beyond = lane_pair_verdict(lo, pl->lo_enter, clip, clip_data, ray, &lo_in, &lo_out);
+    vm need_hi = lane_pair_need_hi(pl->cross, lo_out, lo_beyond, first);
+    if (vm_any(vm_andnot(need_hi, pl->slow))) {
+        refine(prep, ray, plain, pl->t_hi, hi);
+        (void)lane_pair_verdict(hi, vm_not(pl->lo_enter), clip, clip_data, ray, &hi_in, &hi_out);
+    } else {
+        *hi = *lo;
+    }
+    vm apart = lane_roots_apart(pl->g_low, pl->a_up, lo->t, lo->err);
+    lane_pair_decide(pl->slow, pl->none, pl->cross, apart, lo_in, lo_out, need_hi, hi_in, hi_out, pr);
+    lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
+    hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
+}
+
+/* The first hit's verdicts in h (found, slow) and the crossing to report:
+ * the upper one where only it is in (returned as a mask). */
+static ALWAYS_INLINE vm lane_pair_first(const lane_pair *pr, const lane_root root[2], lane_root *rt,
+                                        lane_hit *h)
+{
+    vm upper = vm_andnot(pr->in[1], pr->in[0]);
+    lane_root_sel(upper, &root[1], &root[0], rt);
+    h->found = vm_andnot(vm_or(pr->in[0], pr->in[1]), pr->slow);
+    h->slow = pr->slow;
+    return upper;
+}
+
+#if LANE_W == 1
+/*
+ * The scalar all-hits call over a two-crossing kernel run on one ray
+ * (first = 0), so that each crossing the kernel decides gets the record the
+ * batch gives it: the exact path alone where the kernel decided nothing,
+ * else each crossing from the kernel where decided and certified by its
+ * record, from the exact path where not (hits_merge). record() writes
+ * crossing i of the solved kernel (`solved`) and says whether that record
+ * is certified; kind[] are the crossings' kinds.
+ */
+typedef int (*lane_record_fn)(const void *prep, const lane_ray *ray, const void *solved, int i,
+                              lane_hit *h);
+typedef int (*lane_exact_fn)(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                             isect_hit out[ISECT_MAX_HITS]);
+
+static inline int lane_pair_hits(const lane_pair *pr, const int32_t kind[2], lane_record_fn record,
+                                 const void *prep, const lane_ray *lr, const void *solved,
+                                 lane_exact_fn exact, const isect_shape *s, const isect_ray *ray,
+                                 const isect_params *prm, isect_hit out[ISECT_MAX_HITS])
+{
+    if (pr->plain_slow)
+        return exact(s, ray, prm, out);
+    isect_hit rec[2], found[ISECT_MAX_HITS];
+    int decided[2], in[2], found_count = 0;
+    for (int i = 0; i < 2; i++) {
+        decided[i] = pr->decided[i];
+        in[i] = pr->in[i];
+        if (decided[i] && in[i]) {
+            lane_hit h;
+            decided[i] = record(prep, lr, solved, i, &h);
+            lane_hit_store(&h, 0, &rec[i]);
+        }
+    }
+    if (!decided[0] || !decided[1])
+        found_count = exact(s, ray, prm, found);
+    return hits_merge(rec, decided, in, kind, found, found_count, out);
+}
+#endif
 
 #endif /* ISECT_PRIM_LANES_H */

@@ -33,6 +33,7 @@
  * are those of the coefficients as given.
  */
 #include "prim/prim.h"
+#include "prim/quadric_lanes.h"
 #include "core/ddx.h"
 #include "core/expansion.h"
 #include "core/quad_line.h"
@@ -206,11 +207,10 @@ int quadric_check(const isect_shape *s)
     return all_finite(s->data, 10) ? ISECT_OK : ISECT_E_NONFINITE;
 }
 
-int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
-                 isect_hit out[ISECT_MAX_HITS])
+/* The exact path: certified from double-doubles, else exact. */
+static int quadric_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                         isect_hit out[ISECT_MAX_HITS])
 {
-    if (all_zero(s->data))
-        return 0;
     int e_pos = position_exponent(s->data, ray->org);
     int e_dir = pow2_exponent(max_abs3(ray->dir));
     int t_shift = e_pos - e_dir;
@@ -242,6 +242,32 @@ int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params 
         hit_set_dd(&out[kept++], ray, t_hi, t_lo, normal, -1, kind);
     }
     return kept;
+}
+
+/* Crossing i of the solved kernel (lane_pair_hits): deferred where its
+ * normal is not certified. */
+static int quadric_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                          lane_hit *h)
+{
+    return quadric_lanes_record(prep, ray, &((const quadric_lanes *)solved)->root[i], h);
+}
+
+/* The fast kernel (quadric_lanes.h) on one ray, as the batch runs it, then
+ * the exact path for what it leaves undecided. */
+int quadric_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
+                 isect_hit out[ISECT_MAX_HITS])
+{
+    if (all_zero(s->data))
+        return 0;
+    quadric_prep qp;
+    quadric_prepare(s->data, prm->eps, &qp);
+    lane_ray lr;
+    lane_ray_from(&lr, ray);
+    quadric_lanes ql;
+    quadric_lanes_solve(&qp, &lr, 0, &ql);
+    int32_t kind[2] = { ql.lo_enter ? ISECT_ENTER : ISECT_EXIT, ql.lo_enter ? ISECT_EXIT : ISECT_ENTER };
+    return lane_pair_hits(&ql.pr, kind, quadric_record, &qp, &lr, &ql, quadric_exact, s, ray, prm,
+                          out);
 }
 
 /* Q(x) (scaled coordinates) certified as a double-double, exactly where

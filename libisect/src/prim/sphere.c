@@ -52,9 +52,11 @@ int sphere_check(const isect_shape *s)
  * Parameters are compared in the scaled units (t' = t 2^-t_shift; tmin and
  * tmax scaled alike, exactly unless they become subnormal).
  */
-static int sphere_exact(const double *data, const isect_ray *ray, double eps,
+static int sphere_exact(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                         isect_hit out[ISECT_MAX_HITS])
 {
+    const double *data = s->data;
+    double eps = prm->eps;
     const double *c = data;
     double r = data[3];
     int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c))));
@@ -221,6 +223,15 @@ static int sphere_exact(const double *data, const isect_ray *ray, double eps,
     return count;
 }
 
+/* Crossing i of the solved kernel (lane_pair_hits). */
+static int sphere_record(const void *prep, const lane_ray *ray, const void *solved, int i,
+                         lane_hit *h)
+{
+    const lane_root *rt = &((const sphere_lanes *)solved)->root[i];
+    sphere_lanes_record(prep, ray, rt->t, rt->v, i == 1, h);
+    return 1;
+}
+
 int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *prm,
                 isect_hit out[ISECT_MAX_HITS])
 {
@@ -234,32 +245,8 @@ int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
         return 0;
     sphere_lanes sl;
     sphere_lanes_solve(&sp, &lr, 0, &sl);
-    if (sl.plain_slow)
-        return sphere_exact(s->data, ray, prm->eps, out);
-    /* Each crossing from the kernel where it decided it, from the exact
-     * path where not (both decide exactly, so they agree on which
-     * crossings exist; a decided crossing keeps the kernel's record, as in
-     * the batch). */
-    isect_hit exact[ISECT_MAX_HITS];
-    int exact_count = -1;
-    int count = 0;
-    for (int i = 0; i < 2; i++) {
-        if (sl.decided[i]) {
-            if (sl.in[i]) {
-                lane_hit h;
-                sphere_lanes_record(&sp, &lr, sl.root[i].t, sl.root[i].v, i == 1, &h);
-                lane_hit_store(&h, 0, &out[count++]);
-            }
-            continue;
-        }
-        if (exact_count < 0)
-            exact_count = sphere_exact(s->data, ray, prm->eps, exact);
-        int32_t kind = i == 0 ? ISECT_ENTER : ISECT_EXIT;
-        for (int k = 0; k < exact_count; k++)
-            if (exact[k].kind == kind)
-                out[count++] = exact[k];
-    }
-    return count;
+    static const int32_t kind[2] = { ISECT_ENTER, ISECT_EXIT };
+    return lane_pair_hits(&sl.pr, kind, sphere_record, &sp, &lr, &sl, sphere_exact, s, ray, prm, out);
 }
 
 /* The exact side of p: the sign of |p - c|^2 - r^2 (f = p - c exact as two

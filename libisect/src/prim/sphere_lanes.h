@@ -128,23 +128,12 @@ static ALWAYS_INLINE vm sphere_lanes_screen(const sphere_prep *sp, const lane_ra
     return vm_not(vm_and(usable, vd_gt(lhs, rhs)));
 }
 
-/* A crossing refined from a start (sphere_lanes_refine). */
-typedef struct sphere_root {
-    vd t;       /* the refined parameter */
-    vd err;     /* certified: |t - exact| <= err (when ok) */
-    vm ok;      /* the Kantorovich condition held: exactly one root within err */
-    vm enter;   /* that root is an entry (Q' < 0) */
-    vd v[3];    /* f + t d at the root (|v| = r to a few u): the normal's direction */
-} sphere_root;
-
-/* The plain quantities shared by the refinements. */
+/* The plain quantities shared by the refinements (the pair's: cross, slow
+ * = maybe tangent or out of range, the starts of the entry and the exit). */
 typedef struct sphere_plain {
+    lane_pair_plain pp;
     vdd f[3];   /* o - c exactly */
     vd  dd;     /* D = d.d, plain */
-    vd  d_up;   /* D rounded up: >= d.d */
-    vm  cross;  /* two crossings, certainly */
-    vm  slow;   /* maybe tangent, or out of range: the exact path decides */
-    vd  t_lo, t_hi; /* starting values for the entry and the exit */
 } sphere_plain;
 
 static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_ray *ray,
@@ -156,7 +145,7 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
     const vd f0 = pl->f[0].hi, f1 = pl->f[1].hi, f2 = pl->f[2].hi;
     vd dd = vd_add(vd_add(vd_mul(d[0], d[0]), vd_mul(d[1], d[1])), vd_mul(d[2], d[2]));
     pl->dd = dd;
-    pl->d_up = vd_mul(dd, vd_set1(1.0 + 4.0 * SPHERE_LANES_U));
+    pl->pp.a_up = vd_mul(dd, vd_set1(1.0 + 4.0 * SPHERE_LANES_U));
     vd b = vd_add(vd_add(vd_mul(f0, d[0]), vd_mul(f1, d[1])), vd_mul(f2, d[2]));
     vd m0 = vd_sub(vd_mul(f1, d[2]), vd_mul(f2, d[1]));
     vd m1 = vd_sub(vd_mul(f2, d[0]), vd_mul(f0, d[2]));
@@ -175,21 +164,17 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
                     vd_set1(SPHERE_LANES_ETA));
     /* Tangency band: |G| <= eps r^2 D (+ its rounding) cannot be excluded. */
     vd band = vd_add(vd_mul(vd_set1(sp->eps * (1.0 + 0x1p-50)), rr_dd), e_g);
-    pl->cross = vd_gt(g, band);
+    pl->pp.cross = vd_gt(g, band);
     vm miss = vd_lt(g, vd_neg(band));
     vm ok = sp->in_range ? lane_ray_in_range(ray, 0x1p200) : vm_false();
-    pl->slow = vm_not(vm_and(ok, vm_or(pl->cross, miss)));
+    pl->pp.slow = vm_not(vm_and(ok, vm_or(pl->pp.cross, miss)));
+    pl->pp.none = sp->degenerate ? vm_true() : vm_false(); /* r = 0: never hit */
+    pl->pp.lo_enter = vm_true();
+    pl->pp.g_low = vd_sub(g, e_g);
 
-    /* Starting values; one division for both: q/D = q^2/(qD), C/q = CD/(qD). */
-    vd s = vd_sqrt(vd_max(g, vd_zero()));
-    vd q = vd_neg(vd_add(b, vd_copysign(s, b)));
     vd c = vd_sub(vd_add(vd_add(vd_mul(f0, f0), vd_mul(f1, f1)), vd_mul(f2, f2)),
                   vd_set1(sp->rr_hi));
-    vd inv = vd_div(vd_set1(1.0), vd_mul(q, dd));
-    vd t1 = vd_mul(vd_mul(q, q), inv), t2 = vd_mul(vd_mul(c, dd), inv);
-    vm b_neg = vd_lt(b, vd_zero()); /* q/D is the entry when B >= 0 */
-    pl->t_lo = vd_sel(b_neg, t2, t1);
-    pl->t_hi = vd_sel(b_neg, t1, t2);
+    lane_quad_starts(dd, b, c, g, &pl->pp.t_lo, &pl->pp.t_hi);
 }
 
 /*
@@ -207,69 +192,38 @@ static ALWAYS_INLINE void sphere_lanes_plain(const sphere_prep *sp, const lane_r
  *   within 2 eta/m <= (8/3) eta / (2|P|) of t0 - step; the final rounding
  *   of t adds u|t|.
  */
-static ALWAYS_INLINE void sphere_lanes_refine(const sphere_prep *sp, const lane_ray *ray,
-                                              const sphere_plain *pl, vd t0, sphere_root *rt)
+static ALWAYS_INLINE void sphere_lanes_refine(const void *prep, const lane_ray *ray,
+                                              const void *plain, vd t0, lane_root *rt)
 {
+    const sphere_prep *sp = prep;
+    const sphere_plain *pl = plain;
     const vd *d = ray->dir;
     const vd u = vd_set1(SPHERE_LANES_U), u2 = vd_set1(SPHERE_LANES_U2);
     vd vh[3], vl[3];
-    for (int k = 0; k < 3; k++) {
-        vdd p = two_prod(t0, d[k]);
-        vdd sum = two_sum(pl->f[k].hi, p.hi);
-        vh[k] = sum.hi;
-        vl[k] = vd_add(sum.lo, vd_add(pl->f[k].lo, p.lo));
-    }
-    vdd g0 = two_prod(vh[0], vh[0]), g1 = two_prod(vh[1], vh[1]), g2 = two_prod(vh[2], vh[2]);
-    vdd a = two_sum(g0.hi, g1.hi);
-    vdd b = two_sum(a.hi, g2.hi);
-    vdd c = two_sum(b.hi, vd_set1(-sp->rr_hi));
-    vd cross = vd_add(vd_add(vd_mul(vh[0], vl[0]), vd_mul(vh[1], vl[1])), vd_mul(vh[2], vl[2]));
-    vd sq_lo = vd_add(vd_add(vd_mul(vl[0], vl[0]), vd_mul(vl[1], vl[1])), vd_mul(vl[2], vl[2]));
-    vd lows = vd_add(vd_add(vd_add(a.lo, b.lo), vd_add(c.lo, vd_set1(-sp->rr_lo))),
-                     vd_add(vd_add(vd_add(g0.lo, g1.lo), g2.lo), vd_add(vd_add(cross, cross), sq_lo)));
-    vd r = vd_add(c.hi, lows);
-
-    vd v_sum = vd_add(vd_add(vd_abs(vh[0]), vd_abs(vh[1])), vd_abs(vh[2]));
-    vd l_sum = vd_add(vd_add(vd_abs(vl[0]), vd_abs(vl[1])), vd_abs(vl[2]));
+    lane_offset_at(pl->f, t0, d, vh, vl);
+    lane_sq3 sq;
+    lane_sq3_minus(vh, vl, sp->rr_hi, sp->rr_lo, &sq);
+    vd r = sq.r, l_sum = sq.l_sum;
     vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vd f_max = lane_max_abs3(pl->f[0].hi, pl->f[1].hi, pl->f[2].hi);
     vd big_f = vd_add(f_max, vd_mul(vd_abs(t0), d_max));
-    vd e_r = vd_add(vd_add(vd_mul(vd_mul(vd_set1(32.0), u2), vd_add(b.hi, vd_set1(sp->rr_hi))),
-                           vd_mul(vd_mul(vd_set1(8.0), u),
-                                  vd_add(vd_mul(vd_add(v_sum, v_sum), l_sum), vd_mul(l_sum, l_sum)))),
-                    vd_add(vd_add(vd_mul(vd_mul(vd_set1(28.0), u2), vd_mul(v_sum, big_f)),
-                                  vd_mul(u, vd_abs(r))),
-                           vd_set1(SPHERE_LANES_ETA)));
+    vd e_r = vd_add(sq.e, vd_add(vd_mul(vd_mul(vd_set1(28.0), u2), vd_mul(sq.v_sum, big_f)),
+                                 vd_set1(SPHERE_LANES_ETA)));
 
     vd p0 = vd_mul(d[0], vh[0]), p1 = vd_mul(d[1], vh[1]), p2 = vd_mul(d[2], vh[2]);
     vd pp = vd_add(vd_add(p0, p1), p2);
     vd e_p = vd_add(vd_mul(vd_mul(vd_set1(4.0), u), vd_add(vd_add(vd_abs(p0), vd_abs(p1)), vd_abs(p2))),
                     vd_mul(vd_set1(1.0 + 2.0 * SPHERE_LANES_U), vd_mul(d_max, l_sum)));
     lane_newton nt;
-    lane_newton_certify(t0, r, e_r, pp, e_p, pl->dd, pl->d_up, &nt);
+    lane_root_newton(t0, r, e_r, pp, e_p, pl->dd, pl->pp.a_up, &nt, rt);
     /* v = f + (t0 - step) d is then within rho |d| of the vector to the
      * exact hit: the normal is certified when that is below u r (a grazing
      * ray's is not: it defers). */
     vm normal_ok = vd_le(vd_mul(vd_mul(nt.rho, d_max), vd_set1(2.0)),
                          vd_set1(SPHERE_LANES_U * sp->r));
     rt->ok = vm_and(nt.ok, normal_ok);
-    rt->err = nt.err;
-    rt->t = nt.t;
-    rt->enter = nt.enter;
     for (int k = 0; k < 3; k++)
         rt->v[k] = vd_sub(vd_add(vh[k], vl[k]), vd_mul(nt.step, d[k]));
-}
-
-/* A refined root's verdict: in [tmin, tmax] and within 3.5u|t| (report it),
- * certainly outside (skip it), or neither (defer). */
-static ALWAYS_INLINE vm sphere_root_in(const sphere_root *rt, const lane_ray *ray)
-{
-    return vm_and(vm_and(rt->ok, lane_certainly_in(rt->t, rt->err, ray)),
-                  vd_le(rt->err, vd_mul(vd_set1(3.5 * SPHERE_LANES_U), vd_abs(rt->t))));
-}
-static ALWAYS_INLINE vm sphere_root_out(const sphere_root *rt, const lane_ray *ray)
-{
-    return vm_and(rt->ok, lane_certainly_out(rt->t, rt->err, ray));
 }
 
 /* The record of a crossing at t (entry or exit) with v = f + t d: the unit
@@ -281,15 +235,14 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
                                               const vd v[3], vm exit, lane_hit *h)
 {
     const vd *d = ray->dir;
-    vd inv_r = vd_set1(sp->inv_r);
-    vd n[3] = { vd_mul(v[0], inv_r), vd_mul(v[1], inv_r), vd_mul(v[2], inv_r) };
-    lane_unit_newton(n);
+    vd n[3];
+    lane_unit_scaled(v, vd_set1(sp->inv_r), n);
     h->t = t;
     vd o_max = lane_max_abs3(ray->org[0], ray->org[1], ray->org[2]);
     vd d_max = lane_max_abs3(d[0], d[1], d[2]);
     vm snap = vd_lt(vd_set1(sp->snap_scale), vd_add(o_max, vd_mul(vd_abs(t), d_max)));
     for (int k = 0; k < 3; k++) {
-        vd nk = vd_add(n[k], vd_zero()); /* + 0: never -0 */
+        vd nk = n[k];
         h->normal[k] = nk;
         vd snapped = vd_add(vd_set1(sp->c[k]), vd_mul(vd_set1(sp->r), nk));
         vd along = vd_add(ray->org[k], vd_mul(t, d[k]));
@@ -301,22 +254,10 @@ static ALWAYS_INLINE void sphere_lanes_record(const sphere_prep *sp, const lane_
     h->kind = vd_sel(exit, vd_set1((double)ISECT_EXIT), vd_set1((double)ISECT_ENTER));
 }
 
-/*
- * The crossings' verdicts. The entry is refined always, the exit when
- * needed: for the first hit when the entry lies certainly before tmin, for
- * all hits unless the entry lies certainly after tmax. Per crossing,
- * decided[i] says its verdict in[i] (report it, or not) is certain; the
- * first-hit query is slow where the plain solve defers or a needed
- * crossing is undecided. A crossing decided here is decided the same way
- * and gets the same record in every query, so the scalar all-hits path
- * (sphere.c) asks the exact path only for the undecided ones.
- */
+/* The crossings' verdicts (prim_lanes.h: lane_pair_solve). */
 typedef struct sphere_lanes {
-    vm plain_slow;     /* maybe tangent, out of range: nothing decided here */
-    vm slow;           /* the first hit is not decided */
-    vm in[2];          /* entry, exit: certainly in [tmin, tmax], within 3.5u|t| */
-    vm decided[2];     /* in[i] is certain (crossing i absent, out or in) */
-    sphere_root root[2];
+    lane_pair pr;
+    lane_root root[2];
 } sphere_lanes;
 
 static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_ray *ray, int first,
@@ -324,33 +265,7 @@ static ALWAYS_INLINE void sphere_lanes_solve(const sphere_prep *sp, const lane_r
 {
     sphere_plain pl;
     sphere_lanes_plain(sp, ray, &pl);
-    sphere_root *lo = &sl->root[0], *hi = &sl->root[1];
-    sphere_lanes_refine(sp, ray, &pl, pl.t_lo, lo);
-    vm lo_in = vm_and(pl.cross, sphere_root_in(lo, ray));
-    vm lo_out = vm_and(pl.cross, sphere_root_out(lo, ray));
-    vm absent = vm_not(pl.cross); /* a certain miss (plain_slow aside) */
-    vm lo_decided = vm_or(absent, vm_and(lo->enter, vm_or(lo_in, lo_out)));
-    vm lo_beyond = vm_and(lo_out, vd_gt(lo->t, ray->tmax));
-    vm need_hi = vm_and(pl.cross, first ? vm_andnot(lo_out, lo_beyond) : vm_not(lo_beyond));
-    vm hi_in = vm_false(), hi_decided = vm_not(need_hi);
-    if (vm_any(vm_andnot(need_hi, pl.slow))) {
-        sphere_lanes_refine(sp, ray, &pl, pl.t_hi, hi);
-        vm in = sphere_root_in(hi, ray), out = sphere_root_out(hi, ray);
-        hi_in = vm_and(need_hi, in);
-        hi_decided = vm_or(hi_decided, vm_andnot(vm_or(in, out), hi->enter));
-    } else {
-        *hi = *lo;
-    }
-    vm none = sp->degenerate ? vm_true() : vm_false(); /* r = 0: never hit */
-    sl->plain_slow = vm_andnot(pl.slow, none);
-    sl->decided[0] = vm_or(none, vm_andnot(lo_decided, pl.slow));
-    sl->decided[1] = vm_or(none, vm_andnot(vm_and(hi_decided, lo_decided), pl.slow));
-    sl->in[0] = vm_andnot(lo_in, none);
-    sl->in[1] = vm_andnot(hi_in, none);
-    sl->slow = vm_or(sl->plain_slow, vm_not(vm_and(sl->decided[0], sl->decided[1])));
-    /* reported parameters stay inside [tmin, tmax] (+0, never -0) */
-    lo->t = vd_add(lane_clamp_t(lo->t, ray), vd_zero());
-    hi->t = vd_add(lane_clamp_t(hi->t, ray), vd_zero());
+    lane_pair_solve(sphere_lanes_refine, sp, &pl, NULL, NULL, &pl.pp, ray, first, sl->root, &sl->pr);
 }
 
 /* The first hit in [tmin, tmax] (lane form of the dispatcher's first-hit
@@ -359,14 +274,9 @@ static ALWAYS_INLINE void sphere_lanes_first(const sphere_prep *sp, const lane_r
 {
     sphere_lanes sl;
     sphere_lanes_solve(sp, ray, 1, &sl);
-    vm exit = vm_andnot(sl.in[1], sl.in[0]);
-    vd t = vd_sel(exit, sl.root[1].t, sl.root[0].t);
-    vd v[3];
-    for (int k = 0; k < 3; k++)
-        v[k] = vd_sel(exit, sl.root[1].v[k], sl.root[0].v[k]);
-    sphere_lanes_record(sp, ray, t, v, exit, h);
-    h->found = vm_andnot(vm_or(sl.in[0], sl.in[1]), sl.slow);
-    h->slow = sl.slow;
+    lane_root rt;
+    vm exit = lane_pair_first(&sl.pr, sl.root, &rt, h);
+    sphere_lanes_record(sp, ray, rt.t, rt.v, exit, h);
 }
 
 #endif /* ISECT_SPHERE_LANES_H */
