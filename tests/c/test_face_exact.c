@@ -36,57 +36,13 @@
 #include "check.h"
 #include "exact_dyadic.h"
 #include "mesh_fixtures.h"
+#include "test_random.h"
 
 #include <isect.h>
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ------------------------------------------------------------ random */
-
-static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-
-static uint64_t rng_next(void)
-{
-    uint64_t x = rng_state;
-    x ^= x << 13;
-    x ^= x >> 7;
-    x ^= x << 17;
-    rng_state = x;
-    return x;
-}
-
-static double rng_unit(void) /* [-1, 1) */
-{
-    return (double)(rng_next() >> 11) * 0x1p-52 - 1.0;
-}
-
-static int rng_int(int lo, int hi) /* [lo, hi] */
-{
-    return lo + (int)(rng_next() % (uint64_t)(hi - lo + 1));
-}
-
-static double ulps(double x, int k)
-{
-    for (; k > 0; k--)
-        x = nextafter(x, INFINITY);
-    for (; k < 0; k++)
-        x = nextafter(x, -INFINITY);
-    return x;
-}
-
-static void rng_dir(double d[3])
-{
-    double len;
-    do {
-        for (int k = 0; k < 3; k++)
-            d[k] = rng_unit();
-        len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    } while (len < 0.1 || len > 1.0);
-    for (int k = 0; k < 3; k++)
-        d[k] /= len;
-}
 
 /* ----------------------------------------------- the reference test */
 

@@ -27,38 +27,11 @@
 #include "check.h"
 #include "isect.h"
 
+#include "test_random.h"
+
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-
-static uint64_t rng_next(void)
-{
-    uint64_t x = rng_state;
-    x ^= x << 13;
-    x ^= x >> 7;
-    x ^= x << 17;
-    rng_state = x;
-    return x;
-}
-
-static double rng_unit(void)
-{
-    return (double)(rng_next() >> 11) * 0x1p-52 - 1.0;
-}
-
-static void rng_dir(double d[3])
-{
-    double len;
-    do {
-        for (int k = 0; k < 3; k++)
-            d[k] = rng_unit();
-        len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    } while (len < 1e-3 || len > 1.0);
-    for (int k = 0; k < 3; k++)
-        d[k] /= len;
-}
 
 static double dot(const double a[3], const double b[3])
 {
