@@ -703,6 +703,30 @@ static void test_convex_parallel(void)
         CHECK_EQ_INT(isect_ray_convex(&r, below2, 1, &o, h, 4), 1);
         CHECK_HIT(h[0], 0.5, 0, 1.5, 2, 0, 0, 1, 0, ISECT_EXIT);
     }
+
+    /* A parallel plane whose side rounds the wrong way. Plane 0 is
+     * x + y + z <= 2^54 - 2; dir (1,-1,0) is exactly parallel to it, and the
+     * origin (2^54, -1, -1) lies exactly on it (side 0: inside). Summed left
+     * to right in doubles, 2^54 - 1 rounds back to 2^54 twice (ties to even),
+     * so the plain side is +2: "outside". The kernel must not trust that
+     * sign (its bound is ~4u 2^55). Planes 1 and 2 are x <= 2^54 + 8 and
+     * x >= 2^54 - 8: out at t = 8 by plane 1 (in at t = -8 behind). */
+    {
+        const double big = 0x1p54;
+        const double slab[3 * 4] = { 1, 1, 1, -(big - 2), 1, 0, 0, -(big + 8), -1, 0, 0, big - 8 };
+        r = ray_of(big, -1, -1, 1, -1, 0);
+        CHECK_EQ_INT(isect_ray_convex(&r, slab, 3, NULL, h, 4), 1);
+        CHECK_EQ_INT(h[0].prim, 1);
+        CHECK_EQ_INT(h[0].kind, ISECT_EXIT);
+        CHECK(h[0].t == 8.0);
+        CHECK(h[0].point[0] == big + 8 && h[0].point[1] == -9.0 && h[0].point[2] == -1.0);
+        r.tmin = -INFINITY;
+        CHECK_EQ_INT(isect_ray_convex(&r, slab, 3, NULL, h, 4), 2);
+        CHECK(h[0].t == -8.0 && h[0].prim == 2 && h[0].kind == ISECT_ENTER);
+        /* moved 4 beyond the plane (side exactly +4, plain +4 too): no hit */
+        r.org[0] = big + 4;
+        CHECK_EQ_INT(isect_ray_convex(&r, slab, 3, NULL, h, 4), 0);
+    }
 }
 
 static void test_convex_tetra(void)

@@ -100,10 +100,12 @@ static ALWAYS_INLINE void convex_lanes_solve(const convex_prep *cp, const lane_r
                                    vd_mul(thr, vd_set1(1.0 + 12.0 * CONVEX_LANES_U))));
         vm parallel = vd_lt(vd_mul(vd_mul(hi, hi), vd_set1(1.0 + 4.0 * CONVEX_LANES_U)),
                             vd_mul(thr, vd_set1(1.0 - 12.0 * CONVEX_LANES_U)));
-        /* a parallel plane: the origin's side (num < 0: outside) */
+        /* a parallel plane: the origin's side (num < 0: outside), only
+         * where num clears its bound — an outside verdict ends the lane as
+         * certain whatever else is undecided, so it must be certain itself */
         vm side_known = vd_gt(vd_abs(num), num_err);
         certain = vm_and(certain, vm_or(crossing, vm_and(parallel, side_known)));
-        outside = vm_or(outside, vm_and(parallel, vd_lt(num, vd_zero())));
+        outside = vm_or(outside, vm_and(vm_and(parallel, side_known), vd_lt(num, vd_zero())));
 
         vd t = vd_div(num, den);
         vd t_abs = vd_abs(t);
