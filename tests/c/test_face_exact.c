@@ -201,14 +201,30 @@ static void random_plane(double c[3], double u[3], double w[3], double *size)
 
 /* --------------------------------------------------------- the parts */
 
-static const char *const levels[] = { "scalar", "sse2", "avx2", "avx512" };
+enum { BLOCK = 64 }; /* rays per batch call */
+
+/* The batch at every SIMD level on BLOCK rays: how many hit/miss decisions
+ * differ from the exact ones in expect[] (summed over the levels). */
+static int batch_decisions_wrong(const isect_shape *s, const isect_ray *block, const int *expect)
+{
+    static const char *const levels[] = { "scalar", "sse2", "avx2", "avx512" };
+    isect_hit out[BLOCK];
+    int wrong = 0;
+    for (int lv = 0; lv < 4; lv++) {
+        setenv("ISECT_SIMD", levels[lv], 1);
+        isect_intersect_batch(s, block, BLOCK, NULL, out);
+        for (int j = 0; j < BLOCK; j++)
+            wrong += (out[j].kind != ISECT_MISS) != expect[j];
+    }
+    unsetenv("ISECT_SIMD");
+    return wrong;
+}
 
 static double face_size; /* of the current triangle or polygon */
 
 static void test_triangles(int rays)
 {
     int differs = 0, wrong = 0, hits = 0, batch_wrong = 0;
-    enum { BLOCK = 64 };
     isect_ray block[BLOCK];
     int expect[BLOCK];
     double tri[9];
@@ -238,16 +254,8 @@ static void test_triangles(int rays)
                     r->org[0], r->org[1], r->org[2], r->dir[0], r->dir[1], r->dir[2], got, exact);
         expect[i % BLOCK] = exact;
         if (i % BLOCK == BLOCK - 1) {
-            /* the batch at every SIMD level: the same decisions */
             isect_shape s = { ISECT_TRIANGLE, 0, 0, 0, tri, NULL, NULL };
-            isect_hit out[BLOCK];
-            for (int lv = 0; lv < 4; lv++) {
-                setenv("ISECT_SIMD", levels[lv], 1);
-                isect_intersect_batch(&s, block, BLOCK, NULL, out);
-                for (int j = 0; j < BLOCK; j++)
-                    batch_wrong += (out[j].kind != ISECT_MISS) != expect[j];
-            }
-            unsetenv("ISECT_SIMD");
+            batch_wrong += batch_decisions_wrong(&s, block, expect);
         }
     }
     printf("triangles: %d rays near edges and vertices, %d hit, %d where the rounded "
@@ -275,7 +283,6 @@ static void make_polygon(double *v, int n, int concave, const double c[3], const
 static void test_polygons(int rays)
 {
     int differs = 0, wrong = 0, hits = 0, batch_wrong = 0;
-    enum { BLOCK = 64 };
     isect_ray block[BLOCK];
     int expect[BLOCK];
     double poly[3 * 12];
@@ -309,14 +316,7 @@ static void test_polygons(int rays)
         expect[i % BLOCK] = exact;
         if (i % BLOCK == BLOCK - 1) {
             isect_shape s = { ISECT_POLYGON, n, rule, 0, poly, NULL, NULL };
-            isect_hit out[BLOCK];
-            for (int lv = 0; lv < 4; lv++) {
-                setenv("ISECT_SIMD", levels[lv], 1);
-                isect_intersect_batch(&s, block, BLOCK, NULL, out);
-                for (int j = 0; j < BLOCK; j++)
-                    batch_wrong += (out[j].kind != ISECT_MISS) != expect[j];
-            }
-            unsetenv("ISECT_SIMD");
+            batch_wrong += batch_decisions_wrong(&s, block, expect);
         }
     }
     printf("polygons: %d rays near edges and vertices, %d hit, %d where the rounded "
