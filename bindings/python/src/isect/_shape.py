@@ -582,16 +582,19 @@ class Shape:
         hp = ffi.from_buffer("isect_hit[]", hits)
         c = self._c
 
-        def work(lo: int, hi: int) -> int:
-            """One chunk of the batch: the C call over [lo, hi)."""
-            return int(lib.isect_intersect_batch(c, rp + lo, hi - lo, opts, hp + lo))
+        def work(lo: int, hi: int) -> tuple[int, int]:
+            """One chunk [lo, hi): the C loop; its status and first bad ray."""
+            bad = ffi.new("int64_t *")
+            status = lib.pyisect_closest(c, rp + lo, hi - lo, opts, hp + lo, bad)
+            return int(status), (lo + int(bad[0]) if bad[0] >= 0 else -1)
 
-        for status in _batch.run(work, n, nthreads):
+        results = _batch.run(work, n, nthreads)
+        for status, _ in results:
             check(status, name)
         if raising:
-            bad = hits["kind"] == _INVALID
-            if bad.any():
-                self._raise_bad_ray(rp, int(bad.argmax()), opts, name)
+            first = [b for _, b in results if b >= 0]
+            if first:
+                self._raise_bad_ray(rp, first[0], opts, name)
         return hits
 
     def _closest_soa(
