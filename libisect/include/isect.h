@@ -139,9 +139,12 @@ extern "C" {
 #define ISECT_QUADRIC      10 /* data: q[10] = A..J                                 */
 #define ISECT_MESH         11 /* mesh: a handle from isect_mesh_create; data NULL */
 
-/* Polygon fill rules (isect_shape.flags for ISECT_POLYGON). */
+/* Fill rules: isect_shape.flags of an ISECT_POLYGON (EVEN_ODD or NONZERO)
+ * and of an ISECT_MESH, where they choose what isect_contains means
+ * (see there; ray queries ignore them). */
 #define ISECT_EVEN_ODD 0 /* inside where the crossing number is odd */
 #define ISECT_NONZERO  1 /* inside where the winding number is not zero */
+#define ISECT_WINDING  2 /* mesh: inside where the generalized winding number is >= 1/2 */
 
 /* Cylinder flag (isect_shape.flags for ISECT_CYLINDER). */
 #define ISECT_CAPPED 1
@@ -241,11 +244,12 @@ typedef struct isect_mesh_report {
  *  type      ISECT_PLANE ... ISECT_MESH.
  *  n         polygon: vertex count (>= 3); convex: plane count (>= 1); else 0.
  *  flags     polygon: ISECT_EVEN_ODD or ISECT_NONZERO; cylinder: ISECT_CAPPED
- *            or 0; else 0.
+ *            or 0; mesh: ISECT_EVEN_ODD, ISECT_NONZERO or ISECT_WINDING (the
+ *            containment rule); else 0.
  *  reserved  must be 0.
  *  data      the primitive's numbers in the order of its scalar function's
  *            arguments (see the shape-type list above); not copied.
- *  mesh      ISECT_MESH only (then data is NULL and n, flags 0); else NULL.
+ *  mesh      ISECT_MESH only (then data is NULL and n 0); else NULL.
  *  xform     NULL, or the object-to-world transform: the ray is taken to
  *            object space by inv, hits are returned in world space (t kept,
  *            points by m, normals by the inverse transpose, renormalised). */
@@ -484,20 +488,62 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
                                             int64_t *offsets, isect_hit *hits, int64_t cap);
 
 /* Point containment for solids: sphere, aabb, convex, capped cylinder,
- * infinite cylinder, ellipsoid, quadric, and closed meshes (exact crossing
- * parity along +x with the tie-breaking rule and an exact orientation test
- * at the point; a mesh with boundary edges is ISECT_E_ARG). Solids are
- * closed sets: a point with F(p) <= 0, evaluated at least to double-precision
- * accuracy (compensated where F is a polynomial), is inside; so is a point on
- * a mesh face, edge or vertex. Degenerate solids contain nothing. 1 inside, 0 outside;
- * ISECT_E_ARG for a thin surface (plane, triangle, polygon, open cylinder);
- * ISECT_E_NONFINITE for a non-finite point. */
+ * infinite cylinder, ellipsoid, quadric, and meshes by the rule in
+ * shape->flags:
+ *  - ISECT_EVEN_ODD (0): the parity of the exact crossings along +x (with
+ *    the tie-breaking rule and an exact orientation test at the point);
+ *    closed meshes (no boundary or non-manifold edge), else ISECT_E_ARG;
+ *  - ISECT_NONZERO: the exact integer winding number (the signed crossing
+ *    count) is not 0; closed, consistently oriented meshes (every edge used
+ *    once each way), self-intersecting and nested shells included, else
+ *    ISECT_E_ARG;
+ *  - ISECT_WINDING: the generalized winding number (see
+ *    isect_winding_number_batch) is >= 1/2; any mesh: open, non-manifold,
+ *    soups. On an oriented closed mesh it is the exact integer, so the rule
+ *    is w >= 1; elsewhere the direct sum, whose error bound is documented
+ *    there (a point within that bound of w = 1/2 can go either way).
+ * Solids are closed sets: a point with F(p) <= 0, evaluated at least to
+ * double-precision accuracy (compensated where F is a polynomial), is inside;
+ * so is a point on a closed mesh's face, edge or vertex. Degenerate solids
+ * contain nothing. 1 inside, 0 outside; ISECT_E_ARG for a thin surface
+ * (plane, triangle, polygon, open cylinder); ISECT_E_NONFINITE for a
+ * non-finite point. */
 ISECT_API int isect_contains(const isect_shape *shape, const double p[3]);
 
 /* inside[i] for p[n][3]: 0, 1, or ISECT_INVALID for a non-finite point.
  * Returns the number inside, or an error (nothing written). */
 ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p, int64_t n,
                                        uint8_t *inside);
+
+/* The generalized winding number w[i] of the mesh shape (ISECT_MESH, any
+ * mesh: closed, open, non-manifold, a soup) at each point p[n][3] (Jacobson,
+ * Kavan & Sorkine 2013): the signed solid angle of its faces at the point
+ * over 4 pi, faces oriented by the right-hand rule (w = 1 inside a closed
+ * mesh whose normals point out, -1 for inward normals, 0 outside; a
+ * mirroring transform negates it).
+ *  - Closed, consistently oriented meshes: off the surface, the exact
+ *    integer (the signed crossing count along +x with the exactly-once
+ *    rule), whatever `accuracy` is; on a face, edge or vertex, the principal
+ *    value by direct summation (1/2 on a face of a simple solid).
+ *  - Any other mesh, accuracy == 0: direct summation over the faces, each
+ *    solid angle by Van Oosterom & Strackee's formula with its numerator
+ *    formed so that it keeps its accuracy far away, and its sign near the
+ *    face's plane exact. |w - exact| <= sum_f (pi E_f/|z_f| + 8 pi u)/4pi
+ *    + 2u|w|, where |z_f| ~ the distance to the face's nearest edge times
+ *    its size squared and E_f ~ 64u times the cube of the distances (the
+ *    exact terms are in src/mesh/winding.c): about 1e-15 per face away from
+ *    edges, growing as a point nears an edge, where w itself varies fastest.
+ *  - accuracy > 0: the hierarchical evaluation of Barill et al. (2018) over
+ *    the mesh's BVH, second order, expanding a cluster of faces only where
+ *    its truncation error is provably at most accuracy times its share of
+ *    the mesh's area: |w - direct| <= accuracy (plus the bound above for
+ *    the faces summed directly). It builds a cluster tree per call (memory
+ *    ~1 KiB per BVH node): worth it for many points on a big mesh.
+ * A non-finite point gets w = NaN. ISECT_OK; ISECT_E_ARG for a non-mesh
+ * shape, NULL p or w with n > 0, n < 0, accuracy negative or NaN;
+ * ISECT_E_NOMEM (nothing written) when the cluster tree cannot be built. */
+ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double *p, int64_t n,
+                                         double accuracy, double *w);
 
 /* -------------------------------------------------------- secondary rays */
 

@@ -307,9 +307,15 @@ static void test_bad_input(void)
     s = mesh_shape(mesh, NULL);
     s.n = 3;
     CHECK_EQ_INT(isect_intersect(&s, &r, NULL, &h, 1), ISECT_E_ARG);
+    /* flags: the containment rule, EVEN_ODD, NONZERO or WINDING (rays
+     * ignore it); anything else is refused */
     s = mesh_shape(mesh, NULL);
-    s.flags = 1;
+    s.flags = 3;
     CHECK_EQ_INT(isect_intersect(&s, &r, NULL, &h, 1), ISECT_E_ARG);
+    s.flags = -1;
+    CHECK_EQ_INT(isect_intersect(&s, &r, NULL, &h, 1), ISECT_E_ARG);
+    s.flags = ISECT_WINDING;
+    CHECK_EQ_INT(isect_intersect(&s, &r, NULL, &h, 1), 2); /* in and out of the cube */
     isect_mesh_report rep;
     CHECK_EQ_INT(isect_mesh_check(NULL, &rep), ISECT_E_ARG);
     CHECK_EQ_INT(isect_mesh_check(mesh, NULL), ISECT_E_ARG);

@@ -10,6 +10,9 @@
  */
 #include "api/dispatch.h"
 #include "api/lanes.h"
+#include "mesh/mesh.h"
+
+#include <math.h>
 
 #include <string.h>
 
@@ -92,7 +95,7 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
     const shape_family *f = shape_prepare(shape, &status);
     if (f == NULL)
         return status;
-    if (!shape_is_solid(f, shape))
+    if (!shape_can_contain(f, shape))
         return ISECT_E_ARG;
 
     int64_t inside_count = 0;
@@ -103,4 +106,42 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
         inside_count += in == 1;
     }
     return inside_count;
+}
+
+ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double *p, int64_t n,
+                                         double accuracy, double *w)
+{
+    if (!batch_args_ok(p, n, w) || !(accuracy >= 0.0))
+        return ISECT_E_ARG;
+    int status;
+    const shape_family *f = shape_prepare(shape, &status);
+    if (f == NULL)
+        return status;
+    if (shape->type != ISECT_MESH)
+        return ISECT_E_ARG;
+    const isect_mesh *m = shape->mesh;
+    /* the far field only where the exact integer does not apply */
+    mesh_winding_tree *tree = NULL;
+    if (accuracy > 0.0 && isfinite(accuracy) && !mesh_is_oriented(m) && n > 0) {
+        status = mesh_winding_tree_build(m, &tree);
+        if (status != ISECT_OK)
+            return status;
+    }
+    int orientation = shape->xform != NULL ? xform_orientation(shape->xform) : 1;
+    for (int64_t i = 0; i < n; i++) {
+        const double *q = p + 3 * i;
+        double obj[3];
+        if (shape->xform != NULL && all_finite(q, 3)) {
+            xform_point_to_object(shape->xform, q, obj);
+            q = obj;
+        }
+        if (!all_finite(q, 3))
+            w[i] = NAN;
+        else if (tree != NULL)
+            w[i] = orientation * mesh_winding_far(m, tree, q, accuracy, NULL);
+        else
+            w[i] = orientation * mesh_generalized_winding(m, q, NULL);
+    }
+    mesh_winding_tree_free(tree);
+    return ISECT_OK;
 }

@@ -45,8 +45,13 @@ typedef int64_t (*first_batch_fn)(const shape_family *f, const isect_shape *s,
 /* The family's first_batch, or NULL (then the per-ray loop runs). */
 first_batch_fn shape_first_batch(const shape_family *f);
 
-/* 1 when the shape has an inside (contains() applies), 0 for thin surfaces. */
+/* 1 when the shape has an inside (its hits are ENTER/EXIT of a solid), 0
+ * for thin surfaces (open meshes included). */
 int shape_is_solid(const shape_family *f, const isect_shape *s);
+
+/* 1 when isect_contains applies: a solid, or a mesh whose containment rule
+ * (flags) it meets. */
+int shape_can_contain(const shape_family *f, const isect_shape *s);
 
 /* 1/0 for a finite world-space point of a solid, or ISECT_E_NONFINITE if the
  * transform takes it out of the finite doubles. */

@@ -139,7 +139,7 @@ static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
     [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_family_hits_all,
                              mesh_family_hit_first, mesh_family_first_batch,
-                             SURFACE_SOLID_IF_CLOSED, 0, 0, mesh_side_test },
+                             SURFACE_SOLID_IF_CLOSED, 0, 1, mesh_side_test },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
@@ -147,6 +147,15 @@ int shape_is_solid(const shape_family *f, const isect_shape *s)
     return f->solidity == SURFACE_SOLID
         || (f->solidity == SURFACE_SOLID_IF_CAPPED && (s->flags & ISECT_CAPPED))
         || (f->solidity == SURFACE_SOLID_IF_CLOSED && mesh_is_closed(s->mesh));
+}
+
+int shape_can_contain(const shape_family *f, const isect_shape *s)
+{
+    if (s->type != ISECT_MESH)
+        return shape_is_solid(f, s);
+    /* a mesh, by its rule (isect.h: isect_contains) */
+    return s->flags == ISECT_WINDING
+        || (s->flags == ISECT_NONZERO ? mesh_is_oriented(s->mesh) : mesh_is_closed(s->mesh));
 }
 
 const shape_family *shape_prepare(const isect_shape *s, int *status)
@@ -266,7 +275,7 @@ ISECT_API int isect_contains(const isect_shape *shape, const double p[3])
     const shape_family *f = shape_prepare(shape, &status);
     if (f == NULL)
         return status;
-    if (p == NULL || !shape_is_solid(f, shape))
+    if (p == NULL || !shape_can_contain(f, shape))
         return ISECT_E_ARG;
     if (!all_finite(p, 3))
         return ISECT_E_NONFINITE;

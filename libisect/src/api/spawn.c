@@ -55,6 +55,10 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
      * or behind it; a direction along the tangent plane leaves in front. */
     int want = v3_dot(dir, hit->normal) >= 0.0 ? 1 : -1;
     int closed_solid = shape->type == ISECT_MESH && shape_is_solid(f, shape);
+    /* a closed mesh's containment by crossing parity, whatever rule the
+     * descriptor carries: exact, and what the side test must agree with */
+    isect_shape parity = *shape;
+    parity.flags = ISECT_EVEN_ODD;
     double step = ulp_of(v3_max_abs(hit->point));
     double q[3];
     for (;;) {
@@ -69,7 +73,7 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
             if (side == want) {
                 if (!closed_solid)
                     break;
-                int inside = shape_point_inside(f, shape, q);
+                int inside = shape_point_inside(f, &parity, q);
                 if (inside < 0)
                     return inside;
                 if (inside == (want < 0))

@@ -111,6 +111,30 @@ static inline ddx ddx_sqr(ddx x)
     return ddx_mul(x, x);
 }
 
+/* sqrt(x) for x > 0 as a dd with its bound, one Newton step from s =
+ * fl(sqrt(x.hi)): s + (x - s^2)/(2s), s^2 exact by TwoProduct (x.hi - s^2
+ * then exact by Sterbenz); the step leaves at most (s - sqrt x)^2/(2s) <=
+ * u^2 s/2 and its residual's roundings u |r| each (|r| <= u s): 4u^2 s in
+ * all. Propagated: |sqrt(X) - sqrt(x')| <= |X - x'| / sqrt(x') for the
+ * exact X >= 0 near x' = hi + lo, with x_low_bound <= x' (a lower bound the
+ * caller knows; 0 or less: an infinite bound). */
+static inline ddx ddx_sqrt(ddx x, double x_low_bound)
+{
+    if (!(x.hi > 0.0)) {
+        ddx zero = { 0.0, 0.0, sqrt(fmax(x.hi, 0.0) + x.err) };
+        return zero;
+    }
+    double s = sqrt(x.hi);
+    double sq = s * s;
+    double sq_err = product_error(s, s, sq);
+    ddx r = { s, (((x.hi - sq) - sq_err) + x.lo) / (s + s), 0.0 };
+    r = ddx_add(r, ddx_of(0.0));
+    double propagated = x.err == 0.0 ? 0.0
+                      : x_low_bound > 0.0 ? x.err / sqrt(x_low_bound) : INFINITY;
+    r.err = (propagated + 4.0 * DDX_U * DDX_U * s) * DDX_WIDEN + DDX_TINY;
+    return r;
+}
+
 /* x / y, kept as a renormalised dd: the head quotient corrected once by the
  * residual x - tau y (its head part exact by TwoProduct). The bound: the
  * propagated (ex + |x/y| ey) / (|y| - ey) (exact to first order on the

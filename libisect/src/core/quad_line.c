@@ -27,19 +27,6 @@ static int side_certain(double t_hi, double err, double tau)
     return 2;
 }
 
-/* sqrt(x) for x > 0 as a dd with its bound: |sqrt(X) - sqrt(x')| <=
- * |X - x'| / sqrt(x') for the exact X >= 0 near x' = hi + lo. */
-static ddx ddx_sqrt(ddx x, double x_low_bound)
-{
-    double s = sqrt(x.hi);
-    double sq = s * s;
-    double sq_err = product_error(s, s, sq);
-    ddx r = { s, (((x.hi - sq) - sq_err) + x.lo) / (s + s), 0.0 };
-    r = ddx_add(r, ddx_of(0.0));
-    r.err = (x.err / sqrt(x_low_bound) + 4.0 * U * U * s) * DDX_WIDEN + DDX_TINY;
-    return r;
-}
-
 int quad_line_certify(const quad_line_dd *q, double tmin, double tmax, quad_line_roots *out)
 {
     out->count = 0;

@@ -8,6 +8,7 @@
 #include "core/core.h"
 
 #include "core/vec3.h"
+#include "core/predicates.h"
 
 #include <string.h>
 
@@ -108,6 +109,16 @@ void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *o
 void xform_point_to_object(const isect_xform *x, const double p[3], double out[3])
 {
     affine_point(x->inv, p, out);
+}
+
+int xform_orientation(const isect_xform *x)
+{
+    /* det of the rows = orient3 of the rows against the origin (orient3's
+     * differences with 0 are exact); nonzero: isect_xform_init refuses a
+     * singular matrix */
+    const double r0[3] = { x->m[0], x->m[1], x->m[2] }, r1[3] = { x->m[4], x->m[5], x->m[6] };
+    const double r2[3] = { x->m[8], x->m[9], x->m[10] }, zero[3] = { 0.0, 0.0, 0.0 };
+    return orient3_sign(r0, r1, r2, zero) < 0 ? -1 : 1;
 }
 
 void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n)

@@ -128,16 +128,19 @@ int mesh_edge_uses(const isect_mesh *m, mesh_edge_use **out, int64_t *count)
 }
 
 /* Closed: every edge has exactly two uses (no boundary, nothing
- * non-manifold). The uses are bucketed by their lower vertex (a counting
- * sort: two passes, where a full sort by key takes four), and within a
- * bucket (a handful of entries) the upper vertices are sorted by insertion
- * and must come in pairs. */
-static int mesh_edges_closed(const isect_mesh *m, int *closed)
+ * non-manifold); oriented as well when the two uses of every edge run in
+ * opposite directions (the faces agree on an outside: the integer winding
+ * number is then the signed crossing count). The uses are bucketed by
+ * their lower vertex (a counting sort: two passes, where a full sort by key
+ * takes four), and within a bucket (a handful of entries) the upper
+ * vertices, each tagged with its direction in the low bit, are sorted by
+ * insertion and must come in pairs. */
+static int mesh_edges_closed(const isect_mesh *m, int *closed, int *oriented)
 {
     int64_t corners = m->offsets != NULL ? m->offsets[m->face_count] : 3 * m->face_count;
     int64_t nv = m->vertex_count;
     int64_t *start = calloc((size_t)nv + 1, sizeof *start);
-    int32_t *upper = malloc((size_t)(corners > 0 ? corners : 1) * sizeof *upper);
+    int64_t *upper = malloc((size_t)(corners > 0 ? corners : 1) * sizeof *upper);
     if (start == NULL || upper == NULL) {
         free(start);
         free(upper);
@@ -155,7 +158,7 @@ static int mesh_edges_closed(const isect_mesh *m, int *closed)
                 if (pass == 0)
                     start[lo + 1]++;
                 else
-                    upper[start[lo]++] = hi;
+                    upper[start[lo]++] = 2 * (int64_t)hi + (a > b); /* low bit: hi -> lo */
             }
         }
         if (pass == 0)
@@ -164,23 +167,28 @@ static int mesh_edges_closed(const isect_mesh *m, int *closed)
     }
     /* After the fill, start[v] is the end of bucket v (the old start[v+1]). */
     *closed = 1;
+    *oriented = 1;
     int64_t begin = 0;
     for (int64_t v = 0; v < nv && *closed; v++) {
         int64_t end = start[v];
         for (int64_t i = begin + 1; i < end; i++) {
-            int32_t x = upper[i];
+            int64_t x = upper[i];
             int64_t j = i;
             for (; j > begin && upper[j - 1] > x; j--)
                 upper[j] = upper[j - 1];
             upper[j] = x;
         }
-        for (int64_t i = begin; i < end; i += 2)
-            if (i + 1 >= end || upper[i + 1] != upper[i] || (i + 2 < end && upper[i + 2] == upper[i])) {
+        for (int64_t i = begin; i < end; i += 2) {
+            int64_t hi = upper[i] >> 1;
+            if (i + 1 >= end || upper[i + 1] >> 1 != hi || (i + 2 < end && upper[i + 2] >> 1 == hi)) {
                 *closed = 0;
                 break;
             }
+            *oriented &= upper[i] != upper[i + 1]; /* one use each way */
+        }
         begin = end;
     }
+    *oriented &= *closed;
     free(start);
     free(upper);
     return ISECT_OK;
@@ -296,9 +304,10 @@ static int mesh_build(isect_mesh *m)
     if (status != ISECT_OK)
         return status;
 
-    int closed = 0;
-    status = mesh_edges_closed(m, &closed);
+    int closed = 0, oriented = 0;
+    status = mesh_edges_closed(m, &closed, &oriented);
     m->closed = closed;
+    m->oriented = oriented;
     return status;
 }
 
@@ -380,11 +389,18 @@ int mesh_is_closed(const isect_mesh *m)
     return m->closed;
 }
 
+int mesh_is_oriented(const isect_mesh *m)
+{
+    return m->oriented;
+}
+
 int mesh_check(const isect_shape *s)
 {
-    /* The mesh was validated when it was created and cannot change. */
-    (void)s;
-    return ISECT_OK;
+    /* The mesh was validated when it was created and cannot change; the
+     * descriptor's flags are its containment rule. */
+    int rule = s->flags;
+    return rule == ISECT_EVEN_ODD || rule == ISECT_NONZERO || rule == ISECT_WINDING
+         ? ISECT_OK : ISECT_E_ARG;
 }
 
 int mesh_side_test(const isect_shape *s, const double p[3], int32_t prim)

@@ -47,7 +47,7 @@ struct isect_mesh {
     double     coord_bound;      /* max |coordinate| over all vertices: scales the
                                     traversal's error bounds */
     int32_t    closed;           /* every edge used by exactly two faces */
-    int32_t    reserved;
+    int32_t    oriented;         /* closed, and those two uses run opposite ways */
 };
 
 /* Face f: its first corner in idx and its vertex count. */
@@ -105,7 +105,31 @@ int64_t mesh_hit_first_batch(const isect_shape *s, const isect_ray *rays, int64_
 /* The exact side of p against face prim's plane (prim/prim.h): a
  * triangle's by orient3, a polygon's by polygon_plane_side. */
 int     mesh_side_test(const isect_shape *s, const double p[3], int32_t prim);
+/* The signed count of the exact crossings of the perturbed +x ray from p
+ * (mesh_query.c: each crossing +1 where the ray leaves through a face's
+ * front, -1 where it enters): for a closed, consistently oriented mesh the
+ * winding number of p, exactly. Returns 1 without a count when p lies on
+ * the surface (a face, edge or vertex), else 0. */
+int     mesh_crossing_count(const isect_mesh *m, const double p[3], int64_t *count);
+
+/* Generalized winding numbers (winding.c, which states the numerics and
+ * the error bounds): by direct summation over the faces; over a tree of
+ * far-field clusters built per query batch, within `accuracy` plus the
+ * directly summed faces' bounds; and the value the library reports, exact
+ * for a closed, oriented mesh off its surface, else direct. *bound (may
+ * be NULL) receives the bound of |w - exact|. */
+double  mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound);
+typedef struct mesh_winding_tree mesh_winding_tree;
+int     mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out);
+void    mesh_winding_tree_free(mesh_winding_tree *t);
+double  mesh_winding_far(const isect_mesh *m, const mesh_winding_tree *t, const double q[3],
+                         double accuracy, double *bound);
+double  mesh_generalized_winding(const isect_mesh *m, const double q[3], double *bound);
+
 /* 1 when the mesh is closed (contains applies). */
 int     mesh_is_closed(const isect_mesh *m);
+/* 1 when it is closed and consistently oriented (its winding numbers are
+ * the signed crossing counts). */
+int     mesh_is_oriented(const isect_mesh *m);
 
 #endif /* ISECT_MESH_H */

@@ -1352,8 +1352,10 @@ static int point_on_face(const isect_mesh *m, const mesh_prim *pr, const double 
     return 0;
 }
 
-/* Crossings of the perturbed +x ray from p with fan triangle a, b, c beyond
- * p: 1 or 0. */
+/* The crossing of the perturbed +x ray from p with fan triangle a, b, c
+ * beyond p: 0 for none; else the sign of the triangle's normal's x
+ * component (+1: the ray leaves through the triangle's front, -1: it
+ * enters through it). */
 static int fan_crossing(const double a[3], const double b[3], const double c[3],
                         const double p[3], const double p2[2])
 {
@@ -1374,19 +1376,18 @@ static int fan_crossing(const double a[3], const double b[3], const double c[3],
         return 0;
     /* Claimed; s is the sign of the normal's x component, so the crossing
      * lies beyond p exactly when det(a-p, b-p, c-p) has the sign s. */
-    return orient3_sign(a, b, c, p) == s;
+    return orient3_sign(a, b, c, p) == s ? s : 0;
 }
 
-int mesh_contains(const isect_shape *s, const double p[3])
+int mesh_crossing_count(const isect_mesh *m, const double p[3], int64_t *count)
 {
-    const isect_mesh *m = s->mesh;
     const bvh_node *nodes = m->tree.nodes;
     double p2[2];
     yz_of(p, p2);
     int32_t stack[BVH_STACK_SIZE];
     int sp = 0;
     int32_t cur = 0;
-    int crossings = 0;
+    int64_t crossings = 0;
     for (;;) {
         const bvh_node *n = &nodes[cur];
         /* Children met by the ray from p in +x, or holding p: closed boxes
@@ -1429,5 +1430,25 @@ int mesh_contains(const isect_shape *s, const double p[3])
             break;
         cur = stack[--sp];
     }
-    return crossings & 1;
+    *count = crossings;
+    return 0;
+}
+
+/* The rules (isect_shape.flags): EVEN_ODD, the parity of the crossings;
+ * NONZERO, a nonzero integer winding number (oriented meshes); WINDING,
+ * w >= 1/2 in world space (a mirroring transform negates w), exact on an
+ * oriented mesh, else the directly summed generalized winding number. A
+ * point on a closed mesh's surface is inside (closed sets). */
+int mesh_contains(const isect_shape *s, const double p[3])
+{
+    const isect_mesh *m = s->mesh;
+    int orientation = s->xform != NULL ? xform_orientation(s->xform) : 1;
+    if (s->flags == ISECT_WINDING && !m->oriented)
+        return orientation * mesh_winding_direct(m, p, NULL) >= 0.5;
+    int64_t count;
+    if (mesh_crossing_count(m, p, &count))
+        return 1;
+    return s->flags == ISECT_EVEN_ODD ? (int)(count & 1)
+         : s->flags == ISECT_NONZERO  ? count != 0
+                                      : orientation * count >= 1;
 }

@@ -1,0 +1,464 @@
+/*
+ * winding.c — the generalized winding number of a mesh (Jacobson, Kavan &
+ * Sorkine, "Robust inside-outside segmentation using generalized winding
+ * numbers", SIGGRAPH 2013): w(q) = (1/4pi) sum over faces of the signed
+ * solid angle the face subtends at q, by direct summation or by the
+ * hierarchical far-field evaluation of Barill, Dickson, Schmidt, Levin &
+ * Jacobson ("Fast winding numbers for soups and clouds", SIGGRAPH 2018)
+ * over the mesh's BVH. For a closed, consistently oriented mesh the value
+ * off the surface is an integer, which mesh_query.c computes exactly as the
+ * signed crossing count; this file serves every other mesh and the points
+ * on a closed mesh's surface (where w is the principal value: the mean of
+ * the two sides, 1/2 on a face of a simple solid).
+ *
+ * One face's solid angle. A polygon face is the fan of triangles (v0, vi,
+ * vi+1): their signed solid angles add up to the polygon's, concave or not.
+ * For a triangle A, B, C and a = A - q, b = B - q, c = C - q (Van Oosterom
+ * & Strackee, IEEE Trans. Biomed. Eng. 30, 1983):
+ *     tan(Omega/2) = det[a b c] / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|),
+ * taken as Omega = 2 atan2(num, den). The numerator is formed as a . n with
+ * n = (B - A) x (C - A), which does not involve q: far from a small face
+ * det[a b c] evaluated directly would cancel to nothing (its products are
+ * |a|^3, the value |a| |n|), while a . n keeps its relative accuracy.
+ *
+ * Error bound (every face, in plain doubles; u = 2^-53). With P_k the
+ * permanent of n_k (|e1_y e2_z| + |e1_z e2_y|, ...):
+ *     |num - exact| <= E_num = 10u sum_k |a_k| P_k
+ *     (a, e1, e2 each within u of their exact differences, n within 4u P,
+ *     the dot product's own 3u),
+ *     |den - exact| <= E_den = 64u |a||b||c|
+ *     (four terms each bounded by |a||b||c|, each within 12u, three sums).
+ * z = den + i num moves by at most E = E_num + E_den, so arg z moves by at
+ * most asin(E/|z|) <= (pi/2) E/|z| while E <= |z|, and Omega = 2 arg z by
+ * pi E/|z|, plus atan2's own rounding: |Omega - exact| <= pi E/|z| + 8 pi u.
+ * |z| shrinks only near the face's edges and vertices, where the solid
+ * angle itself varies fastest (|z|^2 = 2 (|a||b| + a.b)(|b||c| + b.c)
+ * (|c||a| + c.a): zero exactly when q lies on an edge line between its
+ * ends), so the bound follows the problem's own conditioning. Near the
+ * face's plane inside it Omega is close to +-2 pi and its sign is the side
+ * of q: where num is within E_num of 0, the sign of det[a b c] is taken
+ * from the exact orient3 predicate, so q is never put on the wrong side
+ * of the face (a jump of 4 pi); q exactly in the plane gives Omega = 0, the
+ * principal value (on the face, the mean of -2 pi and 2 pi).
+ *
+ * Where that bound exceeds WINDING_REFINE (q near an edge: the fan
+ * diagonals of a polygon and the shared edges of coplanar triangles
+ * included, where the face's solid angle is smooth but its triangles' are
+ * not), num and den are formed again as double-doubles from the exact
+ * differences (core/ddx.h carries their error bounds), which brings E down
+ * by a factor of about 2^53: a point 1e-12 from such an edge keeps ~1e-20.
+ *
+ * The sum is compensated (Neumaier), so the total error is the faces'
+ * bounds summed plus about u |w|: |w - exact| <= (1/4pi) sum_f bound_f +
+ * 2u |w|, the figure tests/c/test_winding.c checks against exact and
+ * 60-digit references.
+ *
+ * Far field (accuracy > 0). Each BVH child is a cluster of faces with
+ * vector area N = sum a_f n_f (unit normals, areas a_f), area-weighted
+ * centre p~, absolute area A_c and first moment M = sum a_f (c_f - p~)
+ * n_f^T (c_f the face centroid). With K(y) = y/|y|^3 (the integrand is
+ * n . K(x - q) / 4pi), Taylor's expansion about Y = p~ - q to second order
+ * integrates exactly over flat faces:
+ *     w_c ~ (1/4pi) [N . Y / |Y|^3 + tr(M) / |Y|^3 - 3 Y^T M Y / |Y|^5].
+ * The remainder is the second derivative of n . K along x - p~, at most
+ * 24 |x - p~|^2 / |xi|^4 per unit area (xi on the segment), so with r a
+ * radius of the cluster about p~ (the farthest corner of its box):
+ *     |w_c - exact| <= (1/4pi) A_c 12 r^2 / (|Y| - r)^4.
+ * A cluster is expanded when that is at most accuracy A_c / A_total, i.e.
+ * (|Y| - r)^4 >= 12 r^2 A_total / (4 pi accuracy); then the clusters'
+ * errors sum to at most `accuracy` (they share no face), and the faces
+ * summed directly add their own bounds above. Clusters are computed per
+ * call, bottom-up over the BVH (children before parents: nodes are in
+ * depth-first order), their moments moved to the parent's centre by the
+ * parallel-axis rule M = sum_i [M_i + (p~_i - p~) N_i^T].
+ */
+#include "mesh/mesh.h"
+#include "core/ddx.h"
+#include "core/predicates.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define WINDING_U 0x1p-53
+#define WINDING_PI 3.14159265358979323846
+#define WINDING_TINY 0x1p-1000
+#define WINDING_REFINE 0x1p-40 /* rad: refine a triangle's angle beyond this bound */
+
+/* A compensated sum (Neumaier's variant of Kahan's) and an error bound. */
+typedef struct angle_sum {
+    double sum, comp, bound;
+} angle_sum;
+
+static void angle_sum_add(angle_sum *s, double x, double bound)
+{
+    double t = s->sum + x;
+    if (fabs(s->sum) >= fabs(x))
+        s->comp += (s->sum - t) + x;
+    else
+        s->comp += (x - t) + s->sum;
+    s->sum = t;
+    s->bound += bound;
+}
+
+static void sub3(const double x[3], const double y[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = x[k] - y[k];
+}
+
+static double dot3(const double x[3], const double y[3])
+{
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+
+/* The solid angle 2 atan2(num, den) with its bound (num's sign made exact
+ * near 0); the error bounds of num and den are e_num and e_den. */
+static double solid_angle_of(double num, double e_num, double den, double e_den,
+                             const double A[3], const double B[3], const double C[3],
+                             const double q[3], double *bound)
+{
+    if (fabs(num) <= e_num) {
+        /* q near the face's plane: its side exactly (sign of det[a b c]) */
+        int side = orient3_sign(A, B, C, q);
+        if (side == 0) {
+            *bound = 0.0; /* in the plane: 0, the principal value on the face */
+            return 0.0;
+        }
+        num = copysign(fabs(num), (double)side);
+    }
+    double rho = hypot(num, den), e = e_num + e_den;
+    *bound = e < rho ? WINDING_PI * e / (rho - e) + 8.0 * WINDING_PI * WINDING_U : 4.0 * WINDING_PI;
+    return 2.0 * atan2(num, den);
+}
+
+static ddx ddx_dot3(const ddx x[3], const ddx y[3])
+{
+    return ddx_add(ddx_add(ddx_mul(x[0], y[0]), ddx_mul(x[1], y[1])), ddx_mul(x[2], y[2]));
+}
+
+/* The same from double-double num and den (see the top of the file). */
+static double triangle_solid_angle_dd(const double A[3], const double B[3], const double C[3],
+                                      const double q[3], double *bound)
+{
+    ddx a[3], b[3], c[3], e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = ddx_diff(A[k], q[k]);
+        b[k] = ddx_diff(B[k], q[k]);
+        c[k] = ddx_diff(C[k], q[k]);
+        e1[k] = ddx_diff(B[k], A[k]);
+        e2[k] = ddx_diff(C[k], A[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        n[k] = ddx_sub(ddx_mul(e1[i], e2[j]), ddx_mul(e1[j], e2[i]));
+    }
+    ddx num = ddx_dot3(a, n);
+    ddx aa = ddx_dot3(a, a), bb = ddx_dot3(b, b), cc = ddx_dot3(c, c);
+    ddx la = ddx_sqrt(aa, aa.hi - aa.err), lb = ddx_sqrt(bb, bb.hi - bb.err);
+    ddx lc = ddx_sqrt(cc, cc.hi - cc.err);
+    ddx den = ddx_add(ddx_add(ddx_mul(ddx_mul(la, lb), lc), ddx_mul(ddx_dot3(a, b), lc)),
+                      ddx_add(ddx_mul(ddx_dot3(a, c), lb), ddx_mul(ddx_dot3(b, c), la)));
+    /* the dd values rounded to doubles: u |x| more each */
+    double num_d = num.hi + num.lo, den_d = den.hi + den.lo;
+    return solid_angle_of(num_d, num.err + DDX_U * fabs(num_d), den_d,
+                          den.err + DDX_U * fabs(den_d), A, B, C, q, bound);
+}
+
+/* The signed solid angle of triangle A, B, C at q, and its error bound
+ * (see the top of the file). */
+static double triangle_solid_angle(const double A[3], const double B[3], const double C[3],
+                                   const double q[3], double *bound)
+{
+    double a[3], b[3], c[3], e1[3], e2[3], n[3], perm[3];
+    sub3(A, q, a);
+    sub3(B, q, b);
+    sub3(C, q, c);
+    sub3(B, A, e1);
+    sub3(C, A, e2);
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    perm[0] = fabs(e1[1] * e2[2]) + fabs(e1[2] * e2[1]);
+    perm[1] = fabs(e1[2] * e2[0]) + fabs(e1[0] * e2[2]);
+    perm[2] = fabs(e1[0] * e2[1]) + fabs(e1[1] * e2[0]);
+    double num = dot3(a, n);
+    double e_num = 10.0 * WINDING_U * (fabs(a[0]) * perm[0] + fabs(a[1]) * perm[1]
+                                       + fabs(a[2]) * perm[2])
+                 + WINDING_TINY;
+    double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
+    double den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
+    double e_den = 64.0 * WINDING_U * la * lb * lc + WINDING_TINY;
+    double omega = solid_angle_of(num, e_num, den, e_den, A, B, C, q, bound);
+    if (*bound > WINDING_REFINE) {
+        double bound_dd;
+        double omega_dd = triangle_solid_angle_dd(A, B, C, q, &bound_dd);
+        if (bound_dd < *bound) {
+            *bound = bound_dd;
+            return omega_dd;
+        }
+    }
+    return omega;
+}
+
+/* Vertex i of BVH prim pr. */
+static const double *prim_vertex(const isect_mesh *m, const mesh_prim *pr, int i)
+{
+    if (pr->nverts == 3)
+        return pr->v + 3 * i;
+    return mesh_vertex(m, m->idx[mesh_face_start(m, pr->face) + i]);
+}
+
+/* Adds prim pr's solid angle at q (its fan's). */
+static void prim_solid_angle(const isect_mesh *m, const mesh_prim *pr, const double q[3],
+                             angle_sum *s)
+{
+    const double *v0 = prim_vertex(m, pr, 0);
+    for (int j = 1; j + 1 < pr->nverts; j++) {
+        double bound;
+        double omega = triangle_solid_angle(v0, prim_vertex(m, pr, j), prim_vertex(m, pr, j + 1),
+                                            q, &bound);
+        angle_sum_add(s, omega, bound);
+    }
+}
+
+static double winding_of(const angle_sum *s, double *bound)
+{
+    double w = (s->sum + s->comp) / (4.0 * WINDING_PI);
+    if (bound != NULL)
+        *bound = s->bound / (4.0 * WINDING_PI) + 2.0 * WINDING_U * fabs(w);
+    return w;
+}
+
+double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound)
+{
+    /* Faces of zero area (left out of the BVH's prims) subtend none. */
+    angle_sum s = { 0.0, 0.0, 0.0 };
+    for (int64_t i = 0; i < m->prim_count; i++)
+        prim_solid_angle(m, &m->prims[i], q, &s);
+    return winding_of(&s, bound);
+}
+
+/* ----------------------------------------------------------- far field */
+
+/* A cluster: the faces below one BVH child. */
+typedef struct winding_cluster {
+    double n[3];      /* sum a_f n_f: the vector area */
+    double center[3]; /* area-weighted centroid (the box centre if no area) */
+    double area;      /* sum a_f */
+    double m[9];      /* sum a_f (c_f - center) n_f^T, row-major */
+    double radius;    /* max distance from center to the child's box */
+} winding_cluster;
+
+struct mesh_winding_tree {
+    winding_cluster *clusters; /* [node_count][BVH_WIDTH] */
+    double           total_area;
+};
+
+/* Fan triangle A, B, C as a one-face cluster about the origin's frame:
+ * vector area v = (B - A) x (C - A) / 2, centroid c. */
+static void fan_moments(const double A[3], const double B[3], const double C[3], double v[3],
+                        double c[3])
+{
+    double e1[3], e2[3];
+    sub3(B, A, e1);
+    sub3(C, A, e2);
+    v[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
+    v[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
+    v[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
+    for (int k = 0; k < 3; k++)
+        c[k] = (A[k] + B[k] + C[k]) / 3.0;
+}
+
+/* Accumulates parts (vector area n, centre, area, moment m about that
+ * centre) into out, whose centre is fixed first: the area-weighted mean of
+ * the parts' centres, or `fallback` without area. */
+static void cluster_merge(winding_cluster *out, const winding_cluster *parts, int count,
+                          const double fallback[3])
+{
+    double area = 0.0, center[3] = { 0.0, 0.0, 0.0 };
+    for (int i = 0; i < count; i++) {
+        area += parts[i].area;
+        for (int k = 0; k < 3; k++)
+            center[k] += parts[i].area * parts[i].center[k];
+    }
+    for (int k = 0; k < 3; k++)
+        out->center[k] = area > 0.0 ? center[k] / area : fallback[k];
+    out->area = area;
+    for (int k = 0; k < 3; k++)
+        out->n[k] = 0.0;
+    for (int k = 0; k < 9; k++)
+        out->m[k] = 0.0;
+    for (int i = 0; i < count; i++) {
+        double shift[3];
+        sub3(parts[i].center, out->center, shift);
+        for (int r = 0; r < 3; r++) {
+            out->n[r] += parts[i].n[r];
+            for (int c = 0; c < 3; c++)
+                out->m[3 * r + c] += parts[i].m[3 * r + c] + shift[r] * parts[i].n[c];
+        }
+    }
+}
+
+/* The cluster of the items [first, first + count) of a leaf child. */
+static int leaf_cluster(const isect_mesh *m, int32_t first, int count, const double fallback[3],
+                        winding_cluster *out)
+{
+    /* One part per fan triangle (each its own centre, no moment). */
+    int parts_count = 0;
+    for (int i = 0; i < count; i++)
+        parts_count += m->prims[first + i].nverts - 2;
+    winding_cluster stack_parts[3 * BVH_MAX_LEAF];
+    memset(stack_parts, 0, sizeof stack_parts); /* quiets -Wmaybe-uninitialized */
+    winding_cluster *parts = parts_count <= 3 * BVH_MAX_LEAF
+                           ? stack_parts : malloc((size_t)parts_count * sizeof *parts);
+    if (parts == NULL)
+        return ISECT_E_NOMEM;
+    int k = 0;
+    for (int i = 0; i < count; i++) {
+        const mesh_prim *pr = &m->prims[first + i];
+        const double *v0 = prim_vertex(m, pr, 0);
+        for (int j = 1; j + 1 < pr->nverts; j++, k++) {
+            winding_cluster *p = &parts[k];
+            fan_moments(v0, prim_vertex(m, pr, j), prim_vertex(m, pr, j + 1), p->n, p->center);
+            p->area = sqrt(dot3(p->n, p->n));
+            for (int e = 0; e < 9; e++)
+                p->m[e] = 0.0;
+        }
+    }
+    cluster_merge(out, parts, parts_count, fallback);
+    if (parts != stack_parts)
+        free(parts);
+    return ISECT_OK;
+}
+
+/* The farthest corner of child c's (float) box from centre. */
+static double box_radius(const bvh_node *n, int c, const double center[3])
+{
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double lo = fabs((double)n->bounds[k][c] - center[k]);
+        double hi = fabs((double)n->bounds[k + 3][c] - center[k]);
+        double d = lo > hi ? lo : hi;
+        r2 += d * d;
+    }
+    return sqrt(r2) * (1.0 + 4.0 * WINDING_U);
+}
+
+int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
+{
+    *out = NULL;
+    mesh_winding_tree *t = malloc(sizeof *t);
+    int64_t nodes = m->tree.node_count;
+    winding_cluster *cl = malloc((size_t)(nodes > 0 ? nodes : 1) * BVH_WIDTH * sizeof *cl);
+    if (t == NULL || cl == NULL) {
+        free(t);
+        free(cl);
+        return ISECT_E_NOMEM;
+    }
+    t->clusters = cl;
+    t->total_area = 0.0;
+    /* Children have larger indices than their parent (depth-first order). */
+    for (int64_t i = nodes - 1; i >= 0; i--) {
+        const bvh_node *n = &m->tree.nodes[i];
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            winding_cluster *slot = &cl[i * BVH_WIDTH + c];
+            double mid[3];
+            for (int k = 0; k < 3; k++)
+                mid[k] = 0.5 * ((double)n->bounds[k][c] + (double)n->bounds[k + 3][c]);
+            if (n->child[c] < 0 && n->count[c] == 0) {
+                /* empty: no faces, never expanded */
+                slot->area = 0.0;
+                slot->radius = 0.0;
+                for (int k = 0; k < 3; k++)
+                    slot->n[k] = slot->center[k] = 0.0;
+                for (int k = 0; k < 9; k++)
+                    slot->m[k] = 0.0;
+                continue;
+            }
+            if (!isfinite(mid[0] + mid[1] + mid[2]))
+                mid[0] = mid[1] = mid[2] = 0.0;
+            if (n->child[c] < 0) {
+                if (leaf_cluster(m, ~n->child[c], n->count[c], mid, slot) != ISECT_OK) {
+                    mesh_winding_tree_free(t);
+                    return ISECT_E_NOMEM;
+                }
+            } else {
+                cluster_merge(slot, &cl[(int64_t)n->child[c] * BVH_WIDTH], BVH_WIDTH, mid);
+            }
+            slot->radius = box_radius(n, c, slot->center);
+        }
+    }
+    for (int c = 0; c < BVH_WIDTH; c++)
+        t->total_area += cl[c].area;
+    *out = t;
+    return ISECT_OK;
+}
+
+void mesh_winding_tree_free(mesh_winding_tree *t)
+{
+    if (t != NULL)
+        free(t->clusters);
+    free(t);
+}
+
+/* The cluster's far-field value at q (the expansion at the top). */
+static double cluster_far(const winding_cluster *c, const double q[3], double dist)
+{
+    double y[3];
+    sub3(c->center, q, y);
+    double d3 = dist * dist * dist, d5 = d3 * dist * dist;
+    double my[3];
+    for (int r = 0; r < 3; r++)
+        my[r] = c->m[3 * r] * y[0] + c->m[3 * r + 1] * y[1] + c->m[3 * r + 2] * y[2];
+    double trace = c->m[0] + c->m[4] + c->m[8];
+    return dot3(c->n, y) / d3 + trace / d3 - 3.0 * dot3(y, my) / d5;
+}
+
+double mesh_winding_far(const isect_mesh *m, const mesh_winding_tree *t, const double q[3],
+                        double accuracy, double *bound)
+{
+    /* Expand a cluster where (|Y| - r)^4 >= 12 r^2 A_total / (4 pi accuracy). */
+    double k = 12.0 * t->total_area / (4.0 * WINDING_PI * accuracy);
+    angle_sum s = { 0.0, 0.0, 0.0 };
+    int32_t stack[BVH_STACK_SIZE];
+    int sp = 0;
+    int32_t cur = 0;
+    for (;;) {
+        const bvh_node *n = &m->tree.nodes[cur];
+        const winding_cluster *cl = &t->clusters[(int64_t)cur * BVH_WIDTH];
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            if (n->child[c] < 0 && n->count[c] == 0)
+                continue;
+            double y[3];
+            sub3(cl[c].center, q, y);
+            double dist = sqrt(dot3(y, y)), gap = dist - cl[c].radius;
+            if (gap > 0.0 && gap * gap * gap * gap >= k * cl[c].radius * cl[c].radius) {
+                /* far: 4 pi times the cluster's value, its share of accuracy */
+                double share = 4.0 * WINDING_PI * accuracy * cl[c].area / t->total_area;
+                angle_sum_add(&s, cluster_far(&cl[c], q, dist), share);
+            } else if (n->child[c] >= 0) {
+                stack[sp++] = n->child[c];
+            } else {
+                int32_t first = ~n->child[c];
+                for (int i = 0; i < n->count[c]; i++)
+                    prim_solid_angle(m, &m->prims[first + i], q, &s);
+            }
+        }
+        if (sp == 0)
+            break;
+        cur = stack[--sp];
+    }
+    return winding_of(&s, bound);
+}
+
+double mesh_generalized_winding(const isect_mesh *m, const double q[3], double *bound)
+{
+    int64_t count;
+    if (m->oriented && mesh_crossing_count(m, q, &count) == 0) {
+        if (bound != NULL)
+            *bound = 0.0;
+        return (double)count; /* exact */
+    }
+    return mesh_winding_direct(m, q, bound);
+}
