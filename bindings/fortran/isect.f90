@@ -90,9 +90,11 @@ module isect
     integer(c_int), parameter, public :: ISECT_QUADRIC = 10
     integer(c_int), parameter, public :: ISECT_MESH = 11
 
-    ! Polygon fill rules (isect_shape%flags of a polygon, rule arguments).
+    ! Fill rules (isect_shape%flags of a polygon, rule arguments; of a mesh,
+    ! its containment rule: ISECT_WINDING is w >= 1/2, for any mesh).
     integer(c_int), parameter, public :: ISECT_EVEN_ODD = 0
     integer(c_int), parameter, public :: ISECT_NONZERO = 1
+    integer(c_int), parameter, public :: ISECT_WINDING = 2
 
     ! isect_shape%flags of a cylinder.
     integer(c_int), parameter, public :: ISECT_CAPPED = 1
@@ -188,7 +190,7 @@ module isect
     public :: isect_point_in_polygon2_batch, isect_winding_number2_batch
     public :: isect_xform_init, isect_xform_ray, isect_xform_hits
     public :: isect_intersect, isect_intersect_batch, isect_intersect_all_batch
-    public :: isect_contains, isect_contains_batch, isect_spawn_ray
+    public :: isect_contains, isect_contains_batch, isect_winding_number_batch, isect_spawn_ray
     public :: isect_mesh_create, isect_mesh_destroy, isect_mesh_check, isect_mesh_bytes
 
     public :: isect_make_ray, isect_make_shape, isect_make_mesh_shape
@@ -579,6 +581,23 @@ module isect
         end function isect_contains_batch
         module procedure fortran_contains_batch
     end interface isect_contains_batch
+
+    ! The generalized winding number w(n) of a mesh shape at p(3, n) (exact
+    ! integers for closed oriented meshes; accuracy 0: exact to rounding, > 0:
+    ! a far field within accuracy; see isect.h). NaN for a non-finite point.
+    interface isect_winding_number_batch
+        function isect_winding_number_batch(shape, p, n, accuracy, w) &
+                bind(C, name="isect_winding_number_batch") result(status)
+            import :: c_int, c_int64_t, c_double, isect_shape
+            type(isect_shape), intent(in) :: shape
+            real(c_double), intent(in) :: p(3, *)
+            integer(c_int64_t), value :: n
+            real(c_double), value :: accuracy
+            real(c_double), intent(inout) :: w(*)
+            integer(c_int) :: status
+        end function isect_winding_number_batch
+        module procedure fortran_winding_number_batch
+    end interface isect_winding_number_batch
 
     ! -------------------------------------------------- secondary rays
 
@@ -1079,5 +1098,22 @@ contains
         end if
         ninside = isect_contains_batch(shape, p, int(size(p, 2), c_int64_t), inside)
     end function fortran_contains_batch
+
+    ! p(3, n), w(n) (at least n entries); accuracy optional (default 0).
+    function fortran_winding_number_batch(shape, p, w, accuracy) result(status)
+        type(isect_shape), intent(in) :: shape
+        real(c_double), intent(in) :: p(:, :)
+        real(c_double), intent(inout) :: w(:)
+        real(c_double), intent(in), optional :: accuracy
+        integer(c_int) :: status
+        real(c_double) :: acc
+        acc = 0.0_c_double
+        if (present(accuracy)) acc = accuracy
+        if (size(p, 1) /= 3 .or. size(w) < size(p, 2)) then
+            status = ISECT_E_ARG
+            return
+        end if
+        status = isect_winding_number_batch(shape, p, int(size(p, 2), c_int64_t), acc, w)
+    end function fortran_winding_number_batch
 
 end module isect

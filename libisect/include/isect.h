@@ -525,20 +525,24 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
  *    integer (the signed crossing count along +x with the exactly-once
  *    rule), whatever `accuracy` is; on a face, edge or vertex, the principal
  *    value by direct summation (1/2 on a face of a simple solid).
- *  - Any other mesh, accuracy == 0: direct summation over the faces, each
- *    solid angle by Van Oosterom & Strackee's formula with its numerator
- *    formed so that it keeps its accuracy far away, and its sign near the
- *    face's plane exact. |w - exact| <= sum_f (pi E_f/|z_f| + 8 pi u)/4pi
+ *  - Any other mesh, accuracy == 0: the sum over the faces, each solid
+ *    angle by Van Oosterom & Strackee's formula with its numerator formed
+ *    so that it keeps its accuracy far away, and its sign near the face's
+ *    plane exact; a batch of 8 points or more sums whole clusters of faces
+ *    (BVH children) that do not box the point through their boundary
+ *    instead (exact: a cluster's solid angle is minus that of the cap over
+ *    its boundary, Jacobson et al. 2013), the same value to rounding. |w - exact| <= sum_f (pi E_f/|z_f| + 8 pi u)/4pi
  *    + 2u|w|, where |z_f| ~ the distance to the face's nearest edge times
  *    its size squared and E_f ~ 64u times the cube of the distances (the
  *    exact terms are in src/mesh/winding.c): about 1e-15 per face away from
  *    edges, growing as a point nears an edge, where w itself varies fastest.
  *  - accuracy > 0: the hierarchical evaluation of Barill et al. (2018) over
  *    the mesh's BVH, second order, expanding a cluster of faces only where
- *    its truncation error is provably at most accuracy times its share of
- *    the mesh's area: |w - direct| <= accuracy (plus the bound above for
- *    the faces summed directly). It builds a cluster tree per call (memory
- *    ~1 KiB per BVH node): worth it for many points on a big mesh.
+ *    its proven truncation error is small enough that the errors sum to
+ *    at most accuracy: |w - (accuracy 0)| <= accuracy. The exact hierarchy
+ *    is already fast, so this pays only for points far from big meshes.
+ *    Both build a cluster tree per call (~1.5 KiB per BVH node and ~100
+ *    bytes per face, freed before returning).
  * A non-finite point gets w = NaN. ISECT_OK; ISECT_E_ARG for a non-mesh
  * shape, NULL p or w with n > 0, n < 0, accuracy negative or NaN;
  * ISECT_E_NOMEM (nothing written) when the cluster tree cannot be built. */

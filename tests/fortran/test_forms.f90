@@ -361,6 +361,7 @@ contains
         type(isect_hit) :: hits(4), c_hits(4)
         integer(c_int) :: status, c_status, count, c_count
         integer(c_int64_t) :: mold(16), bytes, c_bytes
+        real(c_double) :: wpts(3, 3), w(3), c_w(3)
 
         status = isect_mesh_create(corners, quads, mesh, offsets)
         call record(status == ISECT_OK .and. c_associated(mesh), "isect_mesh_create: OK")
@@ -408,6 +409,21 @@ contains
         status = isect_contains(shape, [0.5_c_double, 0.5_c_double, 0.5_c_double])
         c_status = isect_contains(shape, [1.5_c_double, 0.5_c_double, 0.5_c_double])
         call record(status == 1 .and. c_status == 0, "mesh: contains the centre, not (1.5, .5, .5)")
+        ! winding numbers: 1 inside, 0 outside, 1/2 on a face (both forms)
+        wpts = reshape([0.5_c_double, 0.5_c_double, 0.5_c_double, 1.5_c_double, 0.5_c_double, &
+                        0.5_c_double, 0.5_c_double, 0.5_c_double, 0.0_c_double], [3, 3])
+        status = isect_winding_number_batch(shape, wpts, w)
+        c_status = isect_winding_number_batch(shape, wpts, 3_c_int64_t, 0.0_c_double, c_w)
+        ! (exact values compared as <= and >=: -Wcompare-reals)
+        call record(status == ISECT_OK .and. c_status == ISECT_OK .and. w(1) >= 1.0_c_double &
+                    .and. w(1) <= 1.0_c_double .and. abs(w(2)) <= 0.0_c_double &
+                    .and. abs(w(3) - 0.5_c_double) < 1e-14_c_double &
+                    .and. all(abs(w - c_w) <= 0.0_c_double), &
+                    "isect_winding_number_batch: 1, 0, 1/2 by both forms")
+        shape%flags = ISECT_WINDING
+        status = isect_contains(shape, [0.5_c_double, 0.5_c_double, 0.5_c_double])
+        call record(status == 1, "mesh: contains by the winding rule")
+        shape%flags = ISECT_EVEN_ODD
 
         call isect_mesh_destroy(mesh)
         call isect_mesh_destroy(c_mesh)

@@ -87,6 +87,7 @@ program test_layout
         mirrored_constant("ISECT_MESH", ISECT_MESH), &
         mirrored_constant("ISECT_EVEN_ODD", ISECT_EVEN_ODD), &
         mirrored_constant("ISECT_NONZERO", ISECT_NONZERO), &
+        mirrored_constant("ISECT_WINDING", ISECT_WINDING), &
         mirrored_constant("ISECT_CAPPED", ISECT_CAPPED), &
         mirrored_constant("ISECT_CULL_BACK", ISECT_CULL_BACK), &
         mirrored_constant("ISECT_ANY_HIT", ISECT_ANY_HIT) ]

@@ -120,9 +120,10 @@ ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double 
     if (shape->type != ISECT_MESH)
         return ISECT_E_ARG;
     const isect_mesh *m = shape->mesh;
-    /* the far field only where the exact integer does not apply */
+    /* the cluster tree where the exact integer does not apply, for a batch
+     * that repays building it (its cost is a few direct sums) */
     mesh_winding_tree *tree = NULL;
-    if (accuracy > 0.0 && isfinite(accuracy) && !mesh_is_oriented(m) && n > 0) {
+    if (!mesh_is_oriented(m) && (n >= 8 || (accuracy > 0.0 && n > 0))) {
         status = mesh_winding_tree_build(m, &tree);
         if (status != ISECT_OK)
             return status;
@@ -138,7 +139,8 @@ ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double 
         if (!all_finite(q, 3))
             w[i] = NAN;
         else if (tree != NULL)
-            w[i] = orientation * mesh_winding_far(m, tree, q, accuracy, NULL);
+            w[i] = orientation * mesh_winding_far(m, tree, q, isfinite(accuracy) ? accuracy : 0.0,
+                                                  NULL);
         else
             w[i] = orientation * mesh_generalized_winding(m, q, NULL);
     }

@@ -53,6 +53,18 @@
  * 2u |w|, the figure tests/c/test_winding.c checks against exact and
  * 60-digit references.
  *
+ * Exact hierarchy (every batch). A cluster of faces S (a BVH child) and
+ * the cap C over its boundary — the fan from one boundary vertex over the
+ * boundary edges, reversed — form a closed surface inside the child's box,
+ * whose winding number is 0 at every q outside that box (the outside is
+ * connected to infinity). So there w_S(q) = -w_C(q): the cluster costs its
+ * boundary edges (about the square root of its faces), not its faces, and
+ * nothing is approximated (Jacobson, Kavan & Sorkine 2013, section 3.3).
+ * Boundaries are the faces' directed edges with the uses a -> b and b -> a
+ * cancelled (net counts, so non-manifold edges and soups are exact too),
+ * merged bottom-up. Only the leaves whose box holds q are summed face by
+ * face; the result equals the plain sum to the rounding of the terms.
+ *
  * Far field (accuracy > 0). Each BVH child is a cluster of faces with
  * vector area N = sum a_f n_f (unit normals, areas a_f), area-weighted
  * centre p~, absolute area A_c and first moment M = sum a_f (c_f - p~)
@@ -64,10 +76,13 @@
  * 24 |x - p~|^2 / |xi|^4 per unit area (xi on the segment), so with r a
  * radius of the cluster about p~ (the farthest corner of its box):
  *     |w_c - exact| <= (1/4pi) A_c 12 r^2 / (|Y| - r)^4.
- * A cluster is expanded when that is at most accuracy A_c / A_total, i.e.
- * (|Y| - r)^4 >= 12 r^2 A_total / (4 pi accuracy); then the clusters'
- * errors sum to at most `accuracy` (they share no face), and the faces
- * summed directly add their own bounds above. Clusters are computed per
+ * A cluster is expanded when that bound is at most a threshold tau; the
+ * bounds of the expanded clusters are summed, and when the sum exceeds
+ * `accuracy` the point is evaluated again with tau scaled down by the
+ * excess (then, rarely, by direct summation), so |w - direct| <= accuracy
+ * always (clusters share no face); the faces summed directly add their
+ * own bounds above. tau starts at accuracy / 64 (a point meets a few dozen
+ * clusters near the threshold). Clusters are computed per
  * call, bottom-up over the BVH (children before parents: nodes are in
  * depth-first order), their moments moved to the parent's centre by the
  * parallel-axis rule M = sum_i [M_i + (p~_i - p~) N_i^T].
@@ -112,23 +127,37 @@ static double dot3(const double x[3], const double y[3])
     return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
 }
 
-/* The solid angle 2 atan2(num, den) with its bound (num's sign made exact
- * near 0); the error bounds of num and den are e_num and e_den. */
+/* The solid angle 2 atan2(num, den), num's sign made exact near 0 (e_num
+ * and e_den bound the errors of num and den). *bound: pi E/(|z| - E) + 8 pi
+ * u with E = e_num + e_den (4 pi when E >= |z|); computed only where
+ * `want_bound` or where it may exceed WINDING_REFINE (then *refine = 1). */
 static double solid_angle_of(double num, double e_num, double den, double e_den,
                              const double A[3], const double B[3], const double C[3],
-                             const double q[3], double *bound)
+                             const double q[3], int want_bound, double *bound, int *refine)
 {
+    *refine = 0;
+    *bound = 0.0;
     if (fabs(num) <= e_num) {
         /* q near the face's plane: its side exactly (sign of det[a b c]) */
         int side = orient3_sign(A, B, C, q);
-        if (side == 0) {
-            *bound = 0.0; /* in the plane: 0, the principal value on the face */
-            return 0.0;
-        }
+        if (side == 0)
+            return 0.0; /* in the plane: 0, the principal value on the face */
         num = copysign(fabs(num), (double)side);
     }
-    double rho = hypot(num, den), e = e_num + e_den;
-    *bound = e < rho ? WINDING_PI * e / (rho - e) + 8.0 * WINDING_PI * WINDING_U : 4.0 * WINDING_PI;
+    /* |z|^2, scaled to keep the squares finite and normal (num and den
+     * are products of three differences) */
+    double e = e_num + e_den, an = fabs(num), ad = fabs(den);
+    double big = an > ad ? an : ad;
+    double scale = big > 0x1p300 ? 0x1p-600 : big < 0x1p-300 ? 0x1p600 : 1.0;
+    double ns = num * scale, ds = den * scale, es = e * scale;
+    double rho2 = (ns * ns + ds * ds) * (1.0 - 4.0 * WINDING_U);
+    /* pi E/(|z| - E) > 2^-40 needs E > |z| 2^-41.66, i.e. E^2 > |z|^2 2^-83.4 */
+    *refine = es * es > rho2 * 0x1p-84;
+    if (want_bound || *refine) {
+        double rho = sqrt(rho2);
+        *bound = es < rho ? WINDING_PI * es / (rho - es) + 8.0 * WINDING_PI * WINDING_U
+                          : 4.0 * WINDING_PI;
+    }
     return 2.0 * atan2(num, den);
 }
 
@@ -161,14 +190,15 @@ static double triangle_solid_angle_dd(const double A[3], const double B[3], cons
                       ddx_add(ddx_mul(ddx_dot3(a, c), lb), ddx_mul(ddx_dot3(b, c), la)));
     /* the dd values rounded to doubles: u |x| more each */
     double num_d = num.hi + num.lo, den_d = den.hi + den.lo;
+    int refine;
     return solid_angle_of(num_d, num.err + DDX_U * fabs(num_d), den_d,
-                          den.err + DDX_U * fabs(den_d), A, B, C, q, bound);
+                          den.err + DDX_U * fabs(den_d), A, B, C, q, 1, bound, &refine);
 }
 
 /* The signed solid angle of triangle A, B, C at q, and its error bound
- * (see the top of the file). */
+ * when want_bound (see the top of the file). */
 static double triangle_solid_angle(const double A[3], const double B[3], const double C[3],
-                                   const double q[3], double *bound)
+                                   const double q[3], int want_bound, double *bound)
 {
     double a[3], b[3], c[3], e1[3], e2[3], n[3], perm[3];
     sub3(A, q, a);
@@ -189,8 +219,9 @@ static double triangle_solid_angle(const double A[3], const double B[3], const d
     double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
     double den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
     double e_den = 64.0 * WINDING_U * la * lb * lc + WINDING_TINY;
-    double omega = solid_angle_of(num, e_num, den, e_den, A, B, C, q, bound);
-    if (*bound > WINDING_REFINE) {
+    int refine;
+    double omega = solid_angle_of(num, e_num, den, e_den, A, B, C, q, want_bound, bound, &refine);
+    if (refine) {
         double bound_dd;
         double omega_dd = triangle_solid_angle_dd(A, B, C, q, &bound_dd);
         if (bound_dd < *bound) {
@@ -209,15 +240,16 @@ static const double *prim_vertex(const isect_mesh *m, const mesh_prim *pr, int i
     return mesh_vertex(m, m->idx[mesh_face_start(m, pr->face) + i]);
 }
 
-/* Adds prim pr's solid angle at q (its fan's). */
+/* Adds prim pr's solid angle at q (its fan's), and its bound when
+ * want_bound. */
 static void prim_solid_angle(const isect_mesh *m, const mesh_prim *pr, const double q[3],
-                             angle_sum *s)
+                             int want_bound, angle_sum *s)
 {
     const double *v0 = prim_vertex(m, pr, 0);
     for (int j = 1; j + 1 < pr->nverts; j++) {
         double bound;
         double omega = triangle_solid_angle(v0, prim_vertex(m, pr, j), prim_vertex(m, pr, j + 1),
-                                            q, &bound);
+                                            q, want_bound, &bound);
         angle_sum_add(s, omega, bound);
     }
 }
@@ -235,7 +267,7 @@ double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound
     /* Faces of zero area (left out of the BVH's prims) subtend none. */
     angle_sum s = { 0.0, 0.0, 0.0 };
     for (int64_t i = 0; i < m->prim_count; i++)
-        prim_solid_angle(m, &m->prims[i], q, &s);
+        prim_solid_angle(m, &m->prims[i], q, bound != NULL, &s);
     return winding_of(&s, bound);
 }
 
@@ -248,11 +280,21 @@ typedef struct winding_cluster {
     double area;      /* sum a_f */
     double m[9];      /* sum a_f (c_f - center) n_f^T, row-major */
     double radius;    /* max distance from center to the child's box */
+    int64_t edge_first; /* its boundary: edges[edge_first .. + edge_count) */
+    int64_t edge_count;
+    int64_t fans;       /* fan triangles below it (the direct sum's cost) */
 } winding_cluster;
+
+/* A boundary edge of a cluster: vertices a < b and the net number of its
+ * uses a -> b minus b -> a by the cluster's faces (0: interior, dropped). */
+typedef struct boundary_edge {
+    int32_t a, b, count;
+} boundary_edge;
 
 struct mesh_winding_tree {
     winding_cluster *clusters; /* [node_count][BVH_WIDTH] */
-    double           total_area;
+    boundary_edge   *edges;
+    int64_t          edge_used, edge_cap;
 };
 
 /* Fan triangle A, B, C as a one-face cluster about the origin's frame:
@@ -345,6 +387,73 @@ static double box_radius(const bvh_node *n, int c, const double center[3])
     return sqrt(r2) * (1.0 + 4.0 * WINDING_U);
 }
 
+static int edge_order(const void *x, const void *y)
+{
+    const boundary_edge *e = x, *f = y;
+    if (e->a != f->a)
+        return e->a < f->a ? -1 : 1;
+    return (e->b > f->b) - (e->b < f->b);
+}
+
+/* A growable array of edges. */
+typedef struct edge_list {
+    boundary_edge *e;
+    int64_t        used, cap;
+} edge_list;
+
+static int edge_list_reserve(edge_list *l, int64_t more)
+{
+    if (l->used + more <= l->cap)
+        return ISECT_OK;
+    int64_t cap = l->cap > 0 ? l->cap : 256;
+    while (cap < l->used + more)
+        cap *= 2;
+    boundary_edge *e = realloc(l->e, (size_t)cap * sizeof *e);
+    if (e == NULL)
+        return ISECT_E_NOMEM;
+    l->e = e;
+    l->cap = cap;
+    return ISECT_OK;
+}
+
+/* The directed edges of the faces of leaf items [first, first + count). */
+static int leaf_edges(const isect_mesh *m, int32_t first, int count, edge_list *l)
+{
+    for (int i = 0; i < count; i++) {
+        const mesh_prim *pr = &m->prims[first + i];
+        const int32_t *corner = m->idx + mesh_face_start(m, pr->face);
+        int k = pr->nverts;
+        if (edge_list_reserve(l, k) != ISECT_OK)
+            return ISECT_E_NOMEM;
+        for (int j = 0; j < k; j++) {
+            int32_t a = corner[j], b = corner[j + 1 < k ? j + 1 : 0];
+            if (a == b)
+                continue;
+            boundary_edge e = { a < b ? a : b, a < b ? b : a, a < b ? 1 : -1 };
+            l->e[l->used++] = e;
+        }
+    }
+    return ISECT_OK;
+}
+
+/* Sorts l, merges equal edges (their counts summed) and drops the
+ * interior ones (net count 0): the boundary of the union. */
+static void edges_normalize(edge_list *l)
+{
+    if (l->used == 0)
+        return;
+    qsort(l->e, (size_t)l->used, sizeof *l->e, edge_order);
+    int64_t out = 0;
+    for (int64_t i = 0; i < l->used;) {
+        boundary_edge e = l->e[i++];
+        while (i < l->used && l->e[i].a == e.a && l->e[i].b == e.b)
+            e.count += l->e[i++].count;
+        if (e.count != 0)
+            l->e[out++] = e;
+    }
+    l->used = out;
+}
+
 int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
 {
     *out = NULL;
@@ -357,7 +466,8 @@ int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
         return ISECT_E_NOMEM;
     }
     t->clusters = cl;
-    t->total_area = 0.0;
+    t->edges = NULL;
+    edge_list all = { NULL, 0, 0 }, scratch = { NULL, 0, 0 };
     /* Children have larger indices than their parent (depth-first order). */
     for (int64_t i = nodes - 1; i >= 0; i--) {
         const bvh_node *n = &m->tree.nodes[i];
@@ -370,6 +480,7 @@ int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
                 /* empty: no faces, never expanded */
                 slot->area = 0.0;
                 slot->radius = 0.0;
+                slot->edge_first = slot->edge_count = slot->fans = 0;
                 for (int k = 0; k < 3; k++)
                     slot->n[k] = slot->center[k] = 0.0;
                 for (int k = 0; k < 9; k++)
@@ -378,27 +489,63 @@ int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
             }
             if (!isfinite(mid[0] + mid[1] + mid[2]))
                 mid[0] = mid[1] = mid[2] = 0.0;
+            /* the moments, and the boundary: the children's boundaries
+             * (or the leaf's face edges) merged */
+            int status = ISECT_OK;
+            scratch.used = 0;
             if (n->child[c] < 0) {
-                if (leaf_cluster(m, ~n->child[c], n->count[c], mid, slot) != ISECT_OK) {
-                    mesh_winding_tree_free(t);
-                    return ISECT_E_NOMEM;
-                }
+                status = leaf_cluster(m, ~n->child[c], n->count[c], mid, slot);
+                if (status == ISECT_OK)
+                    status = leaf_edges(m, ~n->child[c], n->count[c], &scratch);
+                slot->fans = 0;
+                for (int j = 0; j < n->count[c]; j++)
+                    slot->fans += m->prims[~n->child[c] + j].nverts - 2;
             } else {
-                cluster_merge(slot, &cl[(int64_t)n->child[c] * BVH_WIDTH], BVH_WIDTH, mid);
+                const winding_cluster *kids = &cl[(int64_t)n->child[c] * BVH_WIDTH];
+                cluster_merge(slot, kids, BVH_WIDTH, mid);
+                slot->fans = 0;
+                for (int j = 0; j < BVH_WIDTH && status == ISECT_OK; j++) {
+                    slot->fans += kids[j].fans;
+                    status = edge_list_reserve(&scratch, kids[j].edge_count);
+                    if (status == ISECT_OK) {
+                        memcpy(scratch.e + scratch.used, all.e + kids[j].edge_first,
+                               (size_t)kids[j].edge_count * sizeof *scratch.e);
+                        scratch.used += kids[j].edge_count;
+                    }
+                }
             }
+            if (status == ISECT_OK) {
+                edges_normalize(&scratch);
+                status = edge_list_reserve(&all, scratch.used);
+            }
+            if (status != ISECT_OK) {
+                free(all.e);
+                free(scratch.e);
+                mesh_winding_tree_free(t);
+                return ISECT_E_NOMEM;
+            }
+            slot->edge_first = all.used;
+            slot->edge_count = scratch.used;
+            if (scratch.used > 0)
+                memcpy(all.e + all.used, scratch.e, (size_t)scratch.used * sizeof *all.e);
+            all.used += scratch.used;
             slot->radius = box_radius(n, c, slot->center);
         }
     }
-    for (int c = 0; c < BVH_WIDTH; c++)
-        t->total_area += cl[c].area;
+    free(scratch.e);
+    t->edges = all.e;
+    t->edge_used = all.used;
+    t->edge_cap = all.cap;
     *out = t;
     return ISECT_OK;
 }
 
 void mesh_winding_tree_free(mesh_winding_tree *t)
 {
-    if (t != NULL)
+    if (t != NULL) {
         free(t->clusters);
+        free(t->edges);
+    }
     free(t);
 }
 
@@ -415,12 +562,43 @@ static double cluster_far(const winding_cluster *c, const double q[3], double di
     return dot3(c->n, y) / d3 + trace / d3 - 3.0 * dot3(y, my) / d5;
 }
 
-double mesh_winding_far(const isect_mesh *m, const mesh_winding_tree *t, const double q[3],
-                        double accuracy, double *bound)
+/* q strictly outside child c's (closed, outward-rounded) box. */
+static int outside_box(const bvh_node *n, int c, const double q[3])
 {
-    /* Expand a cluster where (|Y| - r)^4 >= 12 r^2 A_total / (4 pi accuracy). */
-    double k = 12.0 * t->total_area / (4.0 * WINDING_PI * accuracy);
+    for (int k = 0; k < 3; k++)
+        if (q[k] < (double)n->bounds[k][c] || q[k] > (double)n->bounds[k + 3][c])
+            return 1;
+    return 0;
+}
+
+/* Adds the cluster's solid angle at q through its boundary (see the top of
+ * the file): the cap, the fan from one boundary vertex over the boundary
+ * edges, closes the cluster inside its box, so for q outside the box the
+ * cluster's angle is minus the cap's: sum count * Omega(apex, a, b). */
+static void cluster_cap(const isect_mesh *m, const mesh_winding_tree *t, const winding_cluster *cl,
+                        const double q[3], int want_bound, angle_sum *s)
+{
+    const boundary_edge *e = t->edges + cl->edge_first;
+    const double *apex = mesh_vertex(m, e[0].a);
+    for (int64_t i = 0; i < cl->edge_count; i++) {
+        if (e[i].a == e[0].a)
+            continue; /* a fan triangle with two corners at the apex: 0 */
+        double bound;
+        double omega = triangle_solid_angle(apex, mesh_vertex(m, e[i].a), mesh_vertex(m, e[i].b), q,
+                                            want_bound, &bound);
+        angle_sum_add(s, e[i].count * omega, fabs((double)e[i].count) * bound);
+    }
+}
+
+/* One pass: clusters expanded where their bound is at most tau; *far_sum
+ * the sum of those bounds. */
+static double winding_far_pass(const isect_mesh *m, const mesh_winding_tree *t, const double q[3],
+                               double tau, double *far_sum, double *bound)
+{
+    /* bound = 12 A_c r^2 / (4 pi (|Y| - r)^4), in units of w */
+    const double k = 12.0 / (4.0 * WINDING_PI);
     angle_sum s = { 0.0, 0.0, 0.0 };
+    double far = 0.0;
     int32_t stack[BVH_STACK_SIZE];
     int sp = 0;
     int32_t cur = 0;
@@ -433,23 +611,51 @@ double mesh_winding_far(const isect_mesh *m, const mesh_winding_tree *t, const d
             double y[3];
             sub3(cl[c].center, q, y);
             double dist = sqrt(dot3(y, y)), gap = dist - cl[c].radius;
-            if (gap > 0.0 && gap * gap * gap * gap >= k * cl[c].radius * cl[c].radius) {
-                /* far: 4 pi times the cluster's value, its share of accuracy */
-                double share = 4.0 * WINDING_PI * accuracy * cl[c].area / t->total_area;
-                angle_sum_add(&s, cluster_far(&cl[c], q, dist), share);
+            double g2 = gap * gap;
+            double e = gap > 0.0 ? k * cl[c].area * cl[c].radius * cl[c].radius / (g2 * g2) : INFINITY;
+            if (e <= tau) {
+                angle_sum_add(&s, cluster_far(&cl[c], q, dist), 0.0);
+                far += e;
+            } else if (cl[c].edge_count < cl[c].fans && outside_box(n, c, q)) {
+                cluster_cap(m, t, &cl[c], q, bound != NULL, &s);
             } else if (n->child[c] >= 0) {
                 stack[sp++] = n->child[c];
             } else {
                 int32_t first = ~n->child[c];
                 for (int i = 0; i < n->count[c]; i++)
-                    prim_solid_angle(m, &m->prims[first + i], q, &s);
+                    prim_solid_angle(m, &m->prims[first + i], q, bound != NULL, &s);
             }
         }
         if (sp == 0)
             break;
         cur = stack[--sp];
     }
-    return winding_of(&s, bound);
+    *far_sum = far;
+    double w = winding_of(&s, bound);
+    if (bound != NULL)
+        *bound += far;
+    return w;
+}
+
+double mesh_winding_far(const isect_mesh *m, const mesh_winding_tree *t, const double q[3],
+                        double accuracy, double *bound)
+{
+    if (accuracy == 0.0) {
+        double far;
+        return winding_far_pass(m, t, q, -1.0, &far, bound); /* exact: caps, no expansion */
+    }
+    double tau = accuracy / 64.0;
+    for (int pass = 0; pass < 4; pass++) {
+        double far;
+        double w = winding_far_pass(m, t, q, tau, &far, bound);
+        if (far <= accuracy)
+            return w;
+        /* the sum falls about as sqrt(tau) (bounds ~ r^4, cluster counts
+         * ~ 1/r^2 on a surface) */
+        double f = 0.7 * accuracy / far;
+        tau *= f * f;
+    }
+    return mesh_winding_direct(m, q, bound);
 }
 
 double mesh_generalized_winding(const isect_mesh *m, const double q[3], double *bound)

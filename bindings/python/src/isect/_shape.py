@@ -693,7 +693,11 @@ class Solid(Shape):
             InvalidArgumentError: points not of shape (..., 3); an open
                 (uncapped) cylinder, which is a thin surface.
         """
-        name = f"{type(self).__name__}.contains"
+        return self._contains(self._c, points, threads, f"{type(self).__name__}.contains")
+
+    def _contains(self, c: Any, points: ArrayLike, threads: int | None, name: str) -> Any:
+        """``isect_contains_batch`` with descriptor ``c`` (this shape's, or a
+        mesh's with another containment rule)."""
         pts = as_points(points, 3, "points")
         shape = pts.shape[:-1]
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -701,7 +705,6 @@ class Solid(Shape):
         inside = np.empty(n, dtype=np.uint8)
         pp = ffi.from_buffer("double[]", flat)
         ip = ffi.from_buffer("uint8_t[]", inside)
-        c = self._c
 
         def work(lo: int, hi: int) -> int:
             """One chunk of the batch: the C call over [lo, hi)."""
