@@ -26,10 +26,15 @@ from . import _batch
 from ._args import (
     ArrayLike,
     Vector3,
+    as_float_array,
+    as_int32,
     as_matrix4,
     as_points,
     as_ray_array,
+    as_records,
+    as_scalar,
     as_threads,
+    as_vector,
     make_opts,
     make_rays,
     ray_columns,
@@ -42,6 +47,7 @@ from ._types import HIT_DTYPE, KIND_BY_VALUE, RAY_DTYPE, Hit
 _KINDS = KIND_BY_VALUE
 
 S = TypeVar("S", bound="Shape")
+T = TypeVar("T", bound=np.generic)
 
 _INVALID = int(lib.ISECT_INVALID)
 # struct layouts of one isect_hit / isect_ray, for single-ray queries; they hold
@@ -189,9 +195,8 @@ class Shape:
     # ------------------------------------------------------------ building
 
     def _setup(self, data: npt.NDArray[np.float64], n: int = 0, flags: int = 0) -> None:
-        """Adopt ``data`` (a fresh contiguous float64 array) and build the descriptor."""
-        data.flags.writeable = False
-        self._data = data
+        """Adopt (a frozen copy of) ``data`` and build the descriptor."""
+        self._data = frozen(data)
         self._n = n
         self._flags = flags
         self._matrix = None
@@ -261,9 +266,8 @@ class Shape:
             lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
             f"{type(self).__name__}.transformed",
         )
-        m.flags.writeable = False
         new = copy.copy(self)
-        new._matrix = m
+        new._matrix = frozen(m)
         new._xform = xform
         new._describe()
         return new
@@ -382,13 +386,23 @@ class Shape:
         try:
             ox, oy, oz = origin
             dx, dy, dz = direction
+            if not (
+                type(ox) in _PLAIN_NUMBERS and type(oy) in _PLAIN_NUMBERS
+                and type(oz) in _PLAIN_NUMBERS and type(dx) in _PLAIN_NUMBERS
+                and type(dy) in _PLAIN_NUMBERS and type(dz) in _PLAIN_NUMBERS
+                and type(tmin) in _PLAIN_NUMBERS and type(tmax) in _PLAIN_NUMBERS
+            ):
+                raise TypeError
             _pack_ray(ray_bytes, 0, ox, oy, oz, dx, dy, dz, tmin, tmax)
-        except (TypeError, ValueError, struct.error):
-            raise invalid(
-                f"{type(self).__name__}.intersect_all: origin and direction must be "
-                "3 numbers each, tmin and tmax numbers"
-            ) from None
-        if eps is None and not cull_back and not any_hit:
+        except (TypeError, ValueError, OverflowError, struct.error):
+            # Anything but plain numbers (or an int beyond the doubles): the
+            # general conversion, which names the argument it refuses.
+            _pack_ray(
+                ray_bytes, 0, *as_vector(origin, 3, "origin").tolist(),
+                *as_vector(direction, 3, "direction").tolist(),
+                as_scalar(tmin, "tmin"), as_scalar(tmax, "tmax"),
+            )
+        if eps is None and cull_back is False and any_hit is False:
             opts = _NULL
         else:
             opts = make_opts(eps, cull_back, any_hit)
@@ -725,20 +739,16 @@ def _as_hit_array(hits: Any, name: str) -> np.ndarray:
         isinstance(hits, (list, tuple)) and hits and all(isinstance(h, Hit) for h in hits)
     ):
         rows = [hits] if isinstance(hits, Hit) else list(hits)
-        try:
-            a = np.array(
-                [(h.t, h.point, h.normal, h.uv, h.prim, int(h.kind)) for h in rows],
-                dtype=HIT_DTYPE,
-            )
-        except (TypeError, ValueError) as exc:
-            raise invalid(f"{name}: hits: not a Hit ({exc})") from None
+        a = np.zeros(len(rows), dtype=HIT_DTYPE)
+        for field, shape in (("t", ()), ("point", (3,)), ("normal", (3,)), ("uv", (2,))):
+            column = as_float_array([getattr(h, field) for h in rows], f"hits.{field}")
+            if column.shape != (len(rows), *shape):
+                raise invalid(f"hits.{field}: expected {shape or 'a number'} per hit")
+            a[field] = column
+        for field in ("prim", "kind"):
+            a[field] = [as_int32(getattr(h, field), f"hits.{field}") for h in rows]
         return a.reshape(()) if isinstance(hits, Hit) else a
-    a = np.asarray(hits)
-    if a.dtype == HIT_DTYPE:
-        return a
-    if a.dtype.names is not None and set(a.dtype.names) == set(HIT_DTYPE.names or ()):
-        return a.astype(HIT_DTYPE)
-    raise invalid(f"{name}: hits: expected HIT_DTYPE records or Hit tuples, got dtype {a.dtype}")
+    return as_records(hits, HIT_DTYPE, "hits", "HIT_DTYPE records or Hit tuples")
 
 
 def _flat_contiguous(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
@@ -771,6 +781,21 @@ def _rebuild(
     shape = cls.__new__(cls)
     shape._setup(np.array(data, dtype=np.float64, order="C", copy=True), n, flags)
     return shape if matrix is None else shape.transformed(matrix)
+
+
+def frozen(a: npt.NDArray[T]) -> npt.NDArray[T]:
+    """A read-only C-contiguous copy of ``a`` that can never be made writeable.
+
+    Its memory is an immutable ``bytes`` object, so numpy refuses
+    ``flags.writeable = True`` on it and on every view of it (ValueError:
+    "cannot set WRITEABLE flag to True of this array"); an array that owns its
+    memory would allow it. Shapes keep their numbers (and meshes their
+    indices) in such arrays: what the C descriptor points at cannot change.
+    """
+    out = np.frombuffer(np.ascontiguousarray(a).tobytes(), dtype=a.dtype).reshape(a.shape)
+    if not out.flags.aligned:  # pragma: no cover - bytes data is 8-byte aligned
+        out = np.frombuffer(bytes(out.tobytes()), dtype=a.dtype).reshape(a.shape)
+    return out
 
 
 def readonly_view(a: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:

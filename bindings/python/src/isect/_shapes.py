@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from ._args import ArrayLike, Rule, as_int, as_rows, as_rule, as_scalar, as_vector
+from ._args import ArrayLike, Rule, as_int32, as_rows, as_rule, as_scalar, as_vector
 from ._isect import lib
 from ._shape import Shape, Solid, readonly_view
 
@@ -233,7 +233,7 @@ class Cylinder(Solid):
         if isinstance(capped, (bool, np.bool_)):
             flags = lib.ISECT_CAPPED if capped else 0
         else:  # an integer is passed through to C, which accepts 0 and ISECT_CAPPED
-            flags = as_int(capped, "capped")
+            flags = as_int32(capped, "capped")
         data = _pack(as_vector(p0, 3, "p0"), as_vector(p1, 3, "p1"), _num(radius, "radius"))
         self._setup(data, flags=flags)
 
