@@ -376,3 +376,103 @@ def test_every_argument_names_itself(arg: str, call: Callable[[Any], Any]) -> No
             pytest.fail(f"{arg}={value!r:.30}: {type(exc).__name__}: {exc}")
         else:
             pytest.fail(f"{arg}={value!r:.30} was accepted")
+
+
+# ------------------------------------------- errors libisect finds, named
+
+NAN, INF = float("nan"), float("inf")
+_S = isect.Sphere([0, 0, 0], 1.0)
+
+C_ERRORS: list[tuple[str, str, type[isect.IsectError], Callable[[], Any]]] = [
+    ("Sphere nan center", "center", isect.NonFiniteError, lambda: isect.Sphere([NAN, 0, 0], 1)),
+    ("Sphere inf radius", "radius", isect.NonFiniteError, lambda: isect.Sphere([0, 0, 0], INF)),
+    ("Sphere negative radius", "radius", isect.InvalidArgumentError,
+     lambda: isect.Sphere([0, 0, 0], -1)),
+    ("Plane nan d", "d", isect.NonFiniteError, lambda: isect.Plane([0, 0, 1], NAN)),
+    ("Triangle inf c", "c", isect.NonFiniteError,
+     lambda: isect.Triangle([0, 0, 0], [1, 0, 0], [0, INF, 0])),
+    ("Box lo > hi", "lo, hi", isect.InvalidArgumentError, lambda: isect.Box([1, 0, 0], [0, 1, 1])),
+    ("Polygon 2 vertices", "vertices", isect.InvalidArgumentError,
+     lambda: isect.Polygon([[0, 0, 0], [1, 0, 0]])),
+    ("Polygon rule 7", "rule", isect.InvalidArgumentError,
+     lambda: isect.Polygon(np.eye(3), rule=7)),
+    ("Convex no planes", "planes", isect.InvalidArgumentError,
+     lambda: isect.ConvexPolyhedron(np.zeros((0, 4)))),
+    ("Cylinder capped 2", "capped", isect.InvalidArgumentError,
+     lambda: isect.Cylinder([0, 0, 0], [0, 0, 1], 1, capped=2)),
+    ("Cylinder nan p1", "p1", isect.NonFiniteError,
+     lambda: isect.Cylinder([0, 0, 0], [0, NAN, 1], 1)),
+    ("InfiniteCylinder negative radius", "radius", isect.InvalidArgumentError,
+     lambda: isect.InfiniteCylinder([0, 0, 0], [0, 0, 1], -1)),
+    ("Ellipsoid negative radii", "radii", isect.InvalidArgumentError,
+     lambda: isect.Ellipsoid([0, 0, 0], [1, -1, 1])),
+    ("Quadric inf", "coeffs", isect.NonFiniteError, lambda: isect.Quadric([INF] + [0] * 9)),
+    ("Mesh nan vertex", "vertices", isect.NonFiniteError,
+     lambda: isect.Mesh([[0, 0, NAN], *TET_V[1:]], TETS)),
+    ("Mesh index out of range", "faces", isect.InvalidArgumentError,
+     lambda: isect.Mesh(TET_V, [[0, 1, 4]])),
+    ("Mesh face of 2", "faces", isect.InvalidArgumentError,
+     lambda: isect.Mesh(TET_V, [[0, 1, 2], [0, 1]])),
+    ("transformed singular", "matrix", isect.DegenerateError,
+     lambda: _S.transformed(np.diag([1.0, 0.0, 1.0, 1.0]))),
+    ("transformed last row", "matrix", isect.InvalidArgumentError,
+     lambda: _S.transformed(np.ones((4, 4)))),
+    ("intersect nan origin", "origins", isect.NonFiniteError,
+     lambda: _S.intersect([[0, 0, -5], [NAN, 0, 0]], DIR)),
+    ("intersect zero direction", "directions", isect.DegenerateError,
+     lambda: _S.intersect(ORG, [[0, 0, 1], [0, 0, 0]])),
+    ("intersect nan tmin", "tmin", isect.NonFiniteError,
+     lambda: _S.intersect(ORG, DIR, tmin=[0.0, NAN])),
+    ("intersect nan tmax (general path)", "tmax", isect.NonFiniteError,
+     lambda: _S.intersect(np.zeros((2, 1, 3)), np.ones((3, 3)), tmax=[[1.0], [NAN]])),
+    ("intersect negative eps", "eps", isect.InvalidArgumentError,
+     lambda: _S.intersect(ORG, DIR, eps=-1e-9)),
+    ("intersect nan eps", "eps", isect.NonFiniteError, lambda: _S.intersect(ORG, DIR, eps=NAN)),
+    ("intersect_all nan origin", "origin", isect.NonFiniteError,
+     lambda: _S.intersect_all([NAN, 0, 0], DIR)),
+    ("intersect_all zero direction", "direction", isect.DegenerateError,
+     lambda: _S.intersect_all(ORG, [0, 0, 0])),
+    ("intersect_all nan tmax", "tmax", isect.NonFiniteError,
+     lambda: _S.intersect_all(ORG, DIR, tmax=NAN)),
+    ("intersect_all inf eps", "eps", isect.NonFiniteError,
+     lambda: _S.intersect_all(ORG, DIR, eps=INF)),
+    ("intersect_all_batch inf direction", "directions", isect.NonFiniteError,
+     lambda: _S.intersect_all_batch(ORG, [[0, 0, 1], [0, INF, 1]])),
+    ("intersect_rays nan", "rays", isect.NonFiniteError,
+     lambda: _S.intersect_rays(np.full(2, np.nan, isect.RAY_DTYPE))),
+    ("contains nan point", "points", isect.NonFiniteError,
+     lambda: _S.contains([[0, 0, 0], [NAN, 0, 0]])),
+    ("contains open cylinder", "Cylinder.contains", isect.InvalidArgumentError,
+     lambda: isect.Cylinder([0, 0, 0], [0, 0, 1], 1, capped=False).contains([0, 0, 0])),
+    ("spawn zero direction", "directions", isect.DegenerateError,
+     lambda: _S.spawn(_S.intersect(ORG, DIR), [0, 0, 0])),
+    ("spawn a MISS record", "hits", isect.InvalidArgumentError,
+     lambda: _S.spawn(_S.intersect(ORG, [1, 0, 0]), DIR)),
+    ("polygon_normal collinear", "vertices", isect.DegenerateError,
+     lambda: isect.polygon_normal([[0, 0, 0], [1, 1, 1], [2, 2, 2]])),
+    ("plane_from_points 2 points", "vertices", isect.InvalidArgumentError,
+     lambda: isect.plane_from_points([[0, 0, 0], [1, 1, 1]])),
+    ("point_in_polygon rule 5", "rule", isect.InvalidArgumentError,
+     lambda: isect.point_in_polygon(SQ2, [0.5, 0.5], rule=5)),
+    ("point_in_polygon nan vertex", "polygon", isect.NonFiniteError,
+     lambda: isect.point_in_polygon([[NAN, 0], [1, 0], [1, 1]], [0, 0])),
+    ("point_in_polygon nan point", "points", isect.NonFiniteError,
+     lambda: isect.point_in_polygon(SQ2, [[0, 0], [NAN, 0]])),
+    ("winding_number 2 vertices", "polygon", isect.InvalidArgumentError,
+     lambda: isect.winding_number([[0, 0], [1, 0]], [0, 0])),
+    ("winding_number inf point", "points", isect.NonFiniteError,
+     lambda: isect.winding_number(SQ2, [INF, 0])),
+]
+
+
+@pytest.mark.parametrize(("arg", "error", "call"), [c[1:] for c in C_ERRORS],
+                         ids=[c[0] for c in C_ERRORS])
+def test_library_errors_name_the_argument(
+    arg: str, error: type[isect.IsectError], call: Callable[[], Any]
+) -> None:
+    """Errors that libisect reports (or that Python finds by its rules) carry
+    the class of their C status and name the argument that holds the value."""
+    with pytest.raises(isect.IsectError) as info:
+        call()
+    assert type(info.value) is error, repr(info.value)
+    assert arg in str(info.value), str(info.value)

@@ -4,6 +4,7 @@ and C structs that libisect reads. Only marshalling happens here, no geometry.
 
 from __future__ import annotations
 
+import math
 import numbers
 import operator
 from collections.abc import Sequence
@@ -12,7 +13,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ._errors import invalid
+from ._errors import invalid, nonfinite
 from ._isect import ffi, lib
 from ._types import RAY_DTYPE
 
@@ -184,7 +185,26 @@ def make_opts(eps: Any, cull_back: bool, any_hit: bool) -> Any:
     if eps is None and not flags:
         return ffi.NULL
     value = float(lib.ISECT_EPS_DEFAULT) if eps is None else as_scalar(eps, "eps")
+    # The C library's own rules (isect_opts), checked here to name eps.
+    if not math.isfinite(value):
+        raise nonfinite(f"eps: expected a finite number, got {value}")
+    if value < 0:
+        raise invalid(f"eps: expected a number >= 0, got {value}")
     return ffi.new("isect_opts *", (_OPTS_SIZE, flags, value))
+
+
+def ray_culprit(org: Any, dirn: Any, tmin: float, tmax: float, names: Sequence[str]) -> str:
+    """Which of a bad ray's arguments (``names``: origin, direction, tmin,
+    tmax) holds the problem the C library reports for it."""
+    if not all(math.isfinite(v) for v in org):
+        return names[0]
+    if not all(math.isfinite(v) for v in dirn) or not any(dirn):
+        return names[1]
+    if math.isnan(tmin):
+        return names[2]
+    if math.isnan(tmax):
+        return names[3]
+    return ", ".join(names)  # not one of the documented problems: all of them
 
 
 def ray_columns(

@@ -138,6 +138,7 @@ class Mesh(Solid):
     __slots__ = ("_handle", "_indices", "_offsets")
 
     _type = lib.ISECT_MESH
+    _layout = (("vertices", 0),)
 
     _handle: Any
     _indices: npt.NDArray[np.int32]
@@ -182,6 +183,7 @@ class Mesh(Solid):
                 out,
             ),
             "Mesh",
+            "vertices" if not np.isfinite(verts).all() else "faces",
         )
         size = int(lib.isect_mesh_bytes(out[0]))
         self._handle = ffi.gc(out[0], lib.isect_mesh_destroy, size=size)

@@ -38,6 +38,7 @@ from ._args import (
     make_opts,
     make_rays,
     ray_columns,
+    ray_culprit,
     raise_on_bad,
 )
 from ._errors import IsectError, check, error_for, invalid
@@ -218,9 +219,36 @@ class Shape:
         c.xform = ffi.NULL
         # Counting the hits of a valid ray with the untransformed shape reports
         # exactly the errors of the shape's own numbers, n and flags.
-        check(lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0), type(self).__name__)
+        status = lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0)
+        if status < 0:
+            raise error_for(status, type(self).__name__, arg=self._blame(status))
         c.xform = self._xform
         self._c = c
+
+    #: The constructor's numeric arguments in the order of the data array:
+    #: (name, count of doubles; 0 for "all the rest").
+    _layout: ClassVar[tuple[tuple[str, int], ...]] = ()
+
+    def _blame(self, status: int) -> str | None:
+        """The constructor argument that holds what libisect refused
+        (``status``), for the message: the first with a NaN or infinity for
+        ISECT_E_NONFINITE, :meth:`_blame_arg` for ISECT_E_ARG."""
+        if status == lib.ISECT_E_NONFINITE:
+            at = 0
+            for name, count in self._layout:
+                part = self._data[at:] if count == 0 else self._data[at:at + count]
+                if not np.isfinite(part).all():
+                    return name
+                at += count
+            return None
+        if status == lib.ISECT_E_ARG:
+            return self._blame_arg()
+        return None
+
+    def _blame_arg(self) -> str | None:
+        """The argument an ISECT_E_ARG of the constructor is about (the rules
+        of isect.h for the type: a negative radius, lo > hi, ...)."""
+        return None
 
     def _geometry(self) -> tuple[Any, Any]:
         """The descriptor's ``data`` and ``mesh`` pointers: the shape's own
@@ -265,6 +293,7 @@ class Shape:
         check(
             lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
             f"{type(self).__name__}.transformed",
+            "matrix",
         )
         new = copy.copy(self)
         new._matrix = frozen(m)
@@ -413,7 +442,9 @@ class Shape:
             ray_bytes2[:] = ray_bytes
             n = _c_intersect(self._c, ray2, opts, hits, cap)
         if n < 0:
-            raise error_for(n, f"{type(self).__name__}.intersect_all")
+            org, dirn, lo, hi = ray.org, ray.dir, ray.tmin, ray.tmax
+            culprit = ray_culprit(org, dirn, lo, hi, ("origin", "direction", "tmin", "tmax"))
+            raise error_for(n, f"{type(self).__name__}.intersect_all", arg=culprit)
         out = []
         for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
             t, px, py, pz, nx, ny, nz, u, v, prim, kind = _unpack_hit(hit_bytes, offset)
@@ -570,7 +601,10 @@ class Shape:
 
         for status, index in _batch.run(work, n, as_threads(threads)):
             if status < 0:
-                raise error_for(status, name, index=index, item="hit")
+                d = dflat[index * dir_step:index * dir_step + 3]
+                bad_dir = not np.isfinite(d).all() or not d.any()
+                raise error_for(status, name, index=index, item="hit",
+                                arg="directions" if bad_dir else "hits")
         return out.reshape(shape)[()] if shape == () else out.reshape(shape)
 
     # ------------------------------------------------------------ internals
@@ -605,7 +639,8 @@ class Shape:
         if raising:
             bad = hits["kind"] == _INVALID
             if bad.any():
-                self._raise_bad_ray(rp, int(bad.argmax()), opts, name)
+                args = ("rays",) if method == "intersect_rays" else _RAY_ARGS
+                self._raise_bad_ray(rp, int(bad.argmax()), opts, name, args)
         return hits
 
     def _closest_soa(
@@ -648,15 +683,18 @@ class Shape:
                 one, _ = make_rays(org[index * org_step:index * org_step + 3],
                                    dirs[index * dir_step:index * dir_step + 3],
                                    lo[index * lo_step], hi[index * hi_step])
-                status = lib.isect_intersect(c, ffi.from_buffer("isect_ray[]", one), opts,
-                                             ffi.NULL, 0)
-                raise_bad_element(status, name, index, "ray")
+                rp = ffi.from_buffer("isect_ray[]", one)
+                status = lib.isect_intersect(c, rp, opts, ffi.NULL, 0)
+                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS))
         return hits, shape
 
-    def _raise_bad_ray(self, rp: Any, index: int, opts: Any, name: str) -> None:
-        """Raise the error the scalar call reports for the batch's bad ray."""
+    def _raise_bad_ray(
+        self, rp: Any, index: int, opts: Any, name: str, args: Sequence[str] = ()
+    ) -> None:
+        """Raise the error the scalar call reports for the batch's bad ray,
+        naming which of ``args`` (origins, directions, tmin, tmax) holds it."""
         status = lib.isect_intersect(self._c, rp + index, opts, ffi.NULL, 0)
-        raise_bad_element(status, name, index, "ray")
+        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS))
 
     def _repr_fields(self) -> str:
         """The constructor arguments, for repr()."""
@@ -723,7 +761,8 @@ class Solid(Shape):
         bad = inside == _INVALID
         if bad.any():
             index = int(bad.argmax())
-            raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point")
+            raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point",
+                              "points")
         result = inside.view(np.bool_).reshape(shape)
         return bool(result) if shape == () else result
 
@@ -758,16 +797,31 @@ def _flat_contiguous(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
     return np.ascontiguousarray(a).reshape(-1)
 
 
-def raise_bad_element(status: int, name: str, index: int, item: str) -> None:
+#: The arguments of a ray, as Shape.intersect names them.
+_RAY_ARGS = ("origins", "directions", "tmin", "tmax")
+
+
+def _ray_arg(ray: Any, args: Sequence[str]) -> str:
+    """Which of ``args`` holds the problem of the bad ``isect_ray`` ``ray``
+    (one name when ``args`` is a single name, as for ``intersect_rays``)."""
+    if len(args) == 1:
+        return args[0]
+    return ray_culprit(ray.org, ray.dir, ray.tmin, ray.tmax, args)
+
+
+def raise_bad_element(
+    status: int, name: str, index: int, item: str, arg: str | None = None
+) -> None:
     """Raise for element ``index`` that a batch call marked INVALID, with the
-    error the matching scalar call reports for it (``status``)."""
+    error the matching scalar call reports for it (``status``), naming the
+    argument ``arg`` that holds it."""
     if status >= 0:
         raise IsectError(
             f"{name}: {item} {index} was marked INVALID by the batch call, "
             "but the scalar call accepts it",
             index=index,
         )
-    raise error_for(status, name, index=index, item=item)
+    raise error_for(status, name, index=index, item=item, arg=arg)
 
 
 def _rebuild(
