@@ -106,6 +106,14 @@ _PLAIN_NUMBERS = frozenset((float, int, np.float64))
 _F8 = np.dtype(np.float64)
 
 
+def _all_plain(a: object, b: object, c: object, d: object, e: object, f: object, g: object,
+               h: object) -> bool:
+    """The 8 numbers of a ray are plain numbers (types of ``_PLAIN_NUMBERS``)."""
+    p = _PLAIN_NUMBERS
+    return (type(a) in p and type(b) in p and type(c) in p and type(d) in p and type(e) in p
+            and type(f) in p and type(g) in p and type(h) in p)
+
+
 def _plain_vector(v: object) -> Sequence[float] | None:
     """The 3 numbers of ``v`` if it is a list or tuple of 3 plain numbers or a
     native float64 array of shape (3,); None for anything else."""
@@ -415,12 +423,12 @@ class Shape:
         try:
             ox, oy, oz = origin
             dx, dy, dz = direction
+            # Plain numbers only (floats first: the common case, and cheap).
             if not (
-                type(ox) in _PLAIN_NUMBERS and type(oy) in _PLAIN_NUMBERS
-                and type(oz) in _PLAIN_NUMBERS and type(dx) in _PLAIN_NUMBERS
-                and type(dy) in _PLAIN_NUMBERS and type(dz) in _PLAIN_NUMBERS
-                and type(tmin) in _PLAIN_NUMBERS and type(tmax) in _PLAIN_NUMBERS
-            ):
+                type(ox) is float and type(oy) is float and type(oz) is float
+                and type(dx) is float and type(dy) is float and type(dz) is float
+                and type(tmin) is float and type(tmax) is float
+            ) and not _all_plain(ox, oy, oz, dx, dy, dz, tmin, tmax):
                 raise TypeError
             _pack_ray(ray_bytes, 0, ox, oy, oz, dx, dy, dz, tmin, tmax)
         except (TypeError, ValueError, OverflowError, struct.error):
