@@ -170,3 +170,6 @@ clean:
 
 # Fortran module, Fortran tests, installed-examples test, ABI baseline.
 include mk/fortran.mk
+
+# ThreadSanitizer build of the library and the thread test.
+include mk/tsan.mk

@@ -58,6 +58,14 @@ step "test_lanes [no SIMD]: the same digest" sh -c \
 # random directions) never re-hit the surface they leave, never skip a close
 # second surface.
 step "test_spawn 10^6 rays per shape" $B/tests/test_spawn 1000000
+# ThreadSanitizer (mk/tsan.mk): 8 threads on shared shapes and meshes, every
+# batch kind, results equal to the single-threaded ones; any sanitizer report
+# fails the step (scripts/run_tsan.sh, which first checks with a deliberate
+# race that the sanitizer is live). Then the Python batch with threads= and
+# concurrent Python threads, on the package built with -fsanitize=thread.
+step "test_threads [tsan] 8 threads, 2000 rays per shape" sh scripts/run_tsan.sh c 2000 8
+step "python batch build under tsan" make --no-print-directory -s tsan-py
+step "python batch threads [tsan]" sh scripts/run_tsan.sh python
 # The SSE2-only traversal that the AVX2 copy replaces on CPUs that have it.
 step "mesh tests build without AVX2" make --no-print-directory -s B=$B/noavx2 \
     OPT="-O2 -DISECT_NO_AVX2" $B/noavx2/tests/test_mesh $B/noavx2/tests/test_mesh_exactly_once

@@ -4,6 +4,8 @@ and C structs that libisect reads. Only marshalling happens here, no geometry.
 
 from __future__ import annotations
 
+import math
+import numbers
 import operator
 from collections.abc import Sequence
 from typing import Any
@@ -11,7 +13,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ._errors import invalid
+from ._errors import invalid, nonfinite
 from ._isect import ffi, lib
 from ._types import RAY_DTYPE
 
@@ -25,12 +27,52 @@ _RULES = {"evenodd": lib.ISECT_EVEN_ODD, "nonzero": lib.ISECT_NONZERO}
 _OPTS_SIZE = ffi.sizeof("isect_opts")
 
 
+#: numpy dtype kinds that are real numbers: bool, signed and unsigned
+#: integers, floating point. Complex (the imaginary part would be lost),
+#: datetime64 / timedelta64, strings, bytes, structured and object arrays
+#: of anything but real numbers are refused, not converted.
+_REAL_KINDS = frozenset("biuf")
+_KIND_NAMES = {
+    "c": "complex numbers",
+    "m": "timedelta64 values",
+    "M": "datetime64 values",
+    "U": "strings",
+    "S": "bytes",
+    "V": "structured or raw records",
+}
+
+
 def as_float_array(x: ArrayLike, name: str) -> npt.NDArray[np.float64]:
-    """``x`` as a float64 array (no copy if it already is one)."""
+    """``x`` as a float64 array (no copy if it already is one).
+
+    Accepts real numbers only: arrays of bool, integer or floating dtype, and
+    Python numbers or sequences of them (ints beyond int64, which numpy keeps
+    as objects, become the nearest double). Anything else — complex,
+    datetime64, timedelta64, strings, bytes, ``None``, other objects — and an
+    integer beyond the range of doubles is an :class:`InvalidArgumentError`
+    naming ``name``.
+    """
+    if type(x) is np.ndarray and x.dtype == np.float64:
+        return x
     try:
-        return np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
+        a = np.asarray(x)
+    except (TypeError, ValueError, OverflowError) as exc:
         raise invalid(f"{name}: not an array of numbers ({exc})") from None
+    kind = a.dtype.kind
+    if kind == "O":
+        for v in a.flat:
+            if not isinstance(v, numbers.Real):
+                raise invalid(f"{name}: expected real numbers, got {type(v).__name__} {v!r:.40}")
+        try:
+            return a.astype(np.float64)
+        except OverflowError:
+            raise invalid(f"{name}: a number too large for a double") from None
+        except (TypeError, ValueError) as exc:  # pragma: no cover - a Real without __float__
+            raise invalid(f"{name}: not an array of numbers ({exc})") from None
+    if kind not in _REAL_KINDS:
+        what = _KIND_NAMES.get(kind, f"dtype {a.dtype}")
+        raise invalid(f"{name}: expected real numbers, got {what} (dtype {a.dtype})")
+    return a.astype(np.float64, copy=False)
 
 
 def as_vector(x: ArrayLike, k: int, name: str) -> npt.NDArray[np.float64]:
@@ -69,12 +111,33 @@ def as_scalar(x: Any, name: str) -> float:
 
 def as_int(x: Any, name: str) -> int:
     """A Python int from an integer (bool excluded)."""
-    if isinstance(x, bool):
+    if isinstance(x, (bool, np.bool_)):
         raise invalid(f"{name}: expected an integer, got a bool")
     try:
         return operator.index(x)
     except TypeError:
         raise invalid(f"{name}: expected an integer, got {type(x).__name__}") from None
+
+
+_INT32_MIN, _INT32_MAX = -(2**31), 2**31 - 1
+
+
+def as_int32(x: Any, name: str) -> int:
+    """An integer that a C ``int`` / ``int32_t`` argument holds (a flag, a
+    rule); beyond that range an :class:`InvalidArgumentError` naming ``name``
+    (the C library would reject any such value as unknown anyway)."""
+    n = as_int(x, name)
+    if not _INT32_MIN <= n <= _INT32_MAX:
+        raise invalid(f"{name}: {n} is out of the range of a C int")
+    return n
+
+
+def as_flag(x: Any, name: str) -> bool:
+    """A yes/no option: a bool (or numpy bool); anything else is an
+    :class:`InvalidArgumentError` naming ``name``."""
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    raise invalid(f"{name}: expected True or False, got {type(x).__name__} {x!r:.40}")
 
 
 def as_matrix4(m: ArrayLike) -> npt.NDArray[np.float64]:
@@ -92,7 +155,7 @@ def as_rule(rule: Rule) -> int:
             return int(_RULES[rule])
         except KeyError:
             raise invalid(f"rule: expected 'evenodd' or 'nonzero', got {rule!r}") from None
-    return as_int(rule, "rule")
+    return as_int32(rule, "rule")
 
 
 def as_threads(threads: Any) -> int:
@@ -116,11 +179,32 @@ def raise_on_bad(errors: str) -> bool:
 
 def make_opts(eps: Any, cull_back: bool, any_hit: bool) -> Any:
     """An ``isect_opts *`` for the options, or NULL when all are defaults."""
-    flags = (lib.ISECT_CULL_BACK if cull_back else 0) | (lib.ISECT_ANY_HIT if any_hit else 0)
+    flags = (lib.ISECT_CULL_BACK if as_flag(cull_back, "cull_back") else 0) | (
+        lib.ISECT_ANY_HIT if as_flag(any_hit, "any_hit") else 0
+    )
     if eps is None and not flags:
         return ffi.NULL
     value = float(lib.ISECT_EPS_DEFAULT) if eps is None else as_scalar(eps, "eps")
+    # The C library's own rules (isect_opts), checked here to name eps.
+    if not math.isfinite(value):
+        raise nonfinite(f"eps: expected a finite number, got {value}")
+    if value < 0:
+        raise invalid(f"eps: expected a number >= 0, got {value}")
     return ffi.new("isect_opts *", (_OPTS_SIZE, flags, value))
+
+
+def ray_culprit(org: Any, dirn: Any, tmin: float, tmax: float, names: Sequence[str]) -> str:
+    """Which of a bad ray's arguments (``names``: origin, direction, tmin,
+    tmax) holds the problem the C library reports for it."""
+    if not all(math.isfinite(v) for v in org):
+        return names[0]
+    if not all(math.isfinite(v) for v in dirn) or not any(dirn):
+        return names[1]
+    if math.isnan(tmin):
+        return names[2]
+    if math.isnan(tmax):
+        return names[3]
+    return ", ".join(names)  # not one of the documented problems: all of them
 
 
 def ray_columns(
@@ -162,10 +246,35 @@ def make_rays(
 
 def as_ray_array(rays: ArrayLike) -> tuple[np.ndarray, tuple[int, ...]]:
     """A contiguous flat ``RAY_DTYPE`` view (or copy) of ``rays`` and its shape."""
-    a = np.asarray(rays)
-    if a.dtype != RAY_DTYPE:
-        if a.dtype.names is None or set(a.dtype.names) != set(RAY_DTYPE.names or ()):
-            raise invalid(f"rays: expected an array of RAY_DTYPE, got dtype {a.dtype}")
-        a = a.astype(RAY_DTYPE)
+    a = as_records(rays, RAY_DTYPE, "rays", "RAY_DTYPE")
     a = np.ascontiguousarray(a)
     return a.reshape(-1), a.shape
+
+
+def as_records(x: ArrayLike, dtype: np.dtype, name: str, dtype_name: str) -> np.ndarray:
+    """``x`` as an array of the structured ``dtype`` (no copy when it is one).
+
+    Another structured dtype with the same field names is converted, provided
+    every field holds real numbers of the same shape; anything else is an
+    :class:`InvalidArgumentError` naming ``name``.
+    """
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise invalid(f"{name}: expected an array of {dtype_name} ({exc})") from None
+    if a.dtype == dtype:
+        return a
+    fields = a.dtype.fields
+    if fields is None or set(fields) != set(dtype.fields or ()):
+        raise invalid(f"{name}: expected an array of {dtype_name}, got dtype {a.dtype}")
+    for field, (ftype, *_) in fields.items():
+        want = dtype.fields[field][0]  # type: ignore[index]
+        if ftype.base.kind not in _REAL_KINDS or ftype.shape != want.shape:
+            raise invalid(
+                f"{name}: field {field!r} must hold real numbers of shape {want.shape}, "
+                f"got {ftype}"
+            )
+    try:
+        return a.astype(dtype)
+    except (TypeError, ValueError, OverflowError) as exc:  # pragma: no cover - kinds checked
+        raise invalid(f"{name}: cannot convert to {dtype_name} ({exc})") from None

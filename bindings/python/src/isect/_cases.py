@@ -25,9 +25,12 @@ one, an unknown op, shape type, kind, status or flag) is a
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import json
 import math
+import re
 import struct
+import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -103,6 +106,12 @@ OPT_FLAGS = ("cull_back", "any_hit")
 #: op spawn: how far (in ulps of the hit point's largest coordinate) the spawned
 #: origin may lie from the hit point, per coordinate
 SPAWN_MAX_ULPS = 8
+#: Case ids and counts are JSON numbers with an integral value within the
+#: range where doubles hold every integer (the C runner's MAX_CASE_ID).
+MAX_CASE_ID = 2**53
+#: The deepest nesting of arrays and objects a file may have: cJSON's
+#: CJSON_NESTING_LIMIT, which makes the C runner refuse a deeper file.
+MAX_NESTING = 1000
 
 
 class CaseFormatError(ValueError):
@@ -138,9 +147,33 @@ def num(x: Any, where: str = "") -> Any:
             raise CaseFormatError(where, f"{x!r} is not a number") from None
     if isinstance(x, bool):
         return x
-    if isinstance(x, (int, float)):
-        return float(x)
+    if isinstance(x, int):
+        try:
+            return float(x)
+        except OverflowError:  # as the C runner's strtod reads such a literal
+            return math.inf if x > 0 else -math.inf
+    if isinstance(x, float):
+        return x
     raise CaseFormatError(where, f"{x!r} is not a number")
+
+
+def integer(x: Any, where: str, lo: int = -MAX_CASE_ID, hi: int = MAX_CASE_ID) -> int:
+    """A JSON number with an integral value in [lo, hi], as the C runner reads
+    integers (``cj_integer_value``): the number as a double, so ``2.0`` is 2
+    and ``1.5``, ``1e300``, strings, bools and null are refused."""
+    if x is None:
+        raise CaseFormatError(where, "missing")
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        raise CaseFormatError(where, f"{x!r} is not an integer")
+    try:
+        v = float(x)
+    except OverflowError:
+        v = math.inf if x > 0 else -math.inf
+    if not lo <= v <= hi:
+        raise CaseFormatError(where, f"{x!r} is out of range [{lo}, {hi}]")
+    if not v.is_integer():
+        raise CaseFormatError(where, f"{x!r} is not an integer")
+    return int(v)
 
 
 def need(obj: Any, key: str, where: str = "") -> Any:
@@ -356,9 +389,7 @@ def status_of(error: BaseException) -> str:
 def _check_hits(case: dict[str, Any], hits: list[Any]) -> None:
     expect = case["expect"]
     tol = tolerances(case)
-    count = need(expect, "count", "expect")
-    if not isinstance(count, int) or isinstance(count, bool):
-        raise CaseFormatError("expect.count", f"{count!r} is not an integer")
+    count = integer(need(expect, "count", "expect"), "expect.count", 0, 2**31 - 1)
     wanted = expect.get("hits", [])
     if not isinstance(wanted, list):
         raise CaseFormatError("expect.hits", "expected a list of hits")
@@ -676,12 +707,7 @@ def load_document(path: Path) -> dict[str, Any]:
         raise CaseFormatError("", f"cannot read: {error.strerror or error}") from None
     except UnicodeDecodeError:
         raise CaseFormatError("", "not UTF-8 text") from None
-    try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise CaseFormatError(
-            "", f"not valid JSON: {error.msg} at line {error.lineno} column {error.colno}"
-        ) from None
+    doc = parse_json(text)
     if not isinstance(doc, dict):
         raise CaseFormatError("", "the file must hold one JSON object")
     if doc.get("schema") != SCHEMA:
@@ -689,18 +715,84 @@ def load_document(path: Path) -> dict[str, Any]:
     cases = need(doc, "cases")
     if not isinstance(cases, list):
         raise CaseFormatError("cases", "expected a list of cases")
-    if "number_of_cases" in doc and doc["number_of_cases"] != len(cases):
-        raise CaseFormatError(
-            "number_of_cases", f"says {doc['number_of_cases']!r} but there are {len(cases)} cases"
-        )
+    number = integer(doc.get("number_of_cases"), "number_of_cases", 0)
+    if number != len(cases):
+        raise CaseFormatError("number_of_cases", f"says {number} but there are {len(cases)} cases")
     return doc
+
+
+def _nesting(text: str) -> int:
+    """The deepest nesting of arrays and objects in JSON text (brackets inside
+    strings are not counted)."""
+    depth = deepest = 0
+    for token in _BRACKETS.finditer(text):
+        c = token.group()
+        if c in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif c in "]}":
+            depth -= 1
+    return deepest
+
+
+#: Strings (skipped whole, escapes included) and brackets.
+_BRACKETS = re.compile(r'"(?:[^"\\]|\\.)*"?|[\[\]{}]')
+
+
+def _no_constant(name: str) -> Any:
+    """json's hook for NaN / Infinity / -Infinity, which JSON does not have."""
+    spelled = "nan" if name == "NaN" else name.lower().replace("infinity", "inf")
+    raise CaseFormatError("", f"not valid JSON: {name} (the corpus writes \"{spelled}\")")
+
+
+def _first_key_wins(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """An object with each key's first value, as the C runner (cJSON) reads a
+    repeated key."""
+    obj: dict[str, Any] = {}
+    for key, value in pairs:
+        obj.setdefault(key, value)
+    return obj
+
+
+def parse_json(text: str) -> Any:
+    """A file's JSON value, read as the C runner reads it: strict JSON (no
+    NaN / Infinity literals), at most MAX_NESTING levels deep, a repeated key
+    meaning its first value. Anything else is a CaseFormatError (never a
+    RecursionError)."""
+    depth = _nesting(text)
+    if depth > MAX_NESTING:
+        raise CaseFormatError("", f"nested {depth} levels deep (at most {MAX_NESTING})")
+    # Room for the parser's recursion at that depth, above the caller's frames.
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(limit, len(inspect.stack(0)) + depth + 100))
+    try:
+        return json.loads(text, parse_constant=_no_constant, object_pairs_hook=_first_key_wins)
+    except json.JSONDecodeError as error:
+        raise CaseFormatError(
+            "", f"not valid JSON: {error.msg} at line {error.lineno} column {error.colno}"
+        ) from None
+    except RecursionError:  # pragma: no cover - the depth was checked
+        raise CaseFormatError("", "nested too deeply") from None
+    finally:
+        sys.setrecursionlimit(limit)
+
+
+def case_id(case: Any) -> int:
+    """The case's ``id``: required, an integer within +-2**53."""
+    if not isinstance(case, dict):
+        raise CaseFormatError("", f"a case must be a JSON object, got {type(case).__name__}")
+    return integer(case.get("id"), "id")
 
 
 def run_case(case: Any, file: str, index: int) -> Result:
     """One case as a :class:`Result` (never raises for a bad case)."""
-    ident = case.get("id", f"#{index}") if isinstance(case, dict) else f"#{index}"
     name = str(case.get("name", "")) if isinstance(case, dict) else ""
     expected = case.get("expect") if isinstance(case, dict) else None
+    try:
+        ident: Any = case_id(case)
+    except CaseFormatError as error:
+        return Result(file, f"#{index}", name, "error", f"bad case: {error}",
+                      extra={"field": error.field})
     try:
         actual = check_case(case)
     except CaseFormatError as error:
@@ -714,6 +806,8 @@ def run_case(case: Any, file: str, index: int) -> Result:
             file, ident, name, "fail", f"unexpected {status_of(error)}: {error}", expected,
             {"status": status_of(error), "message": str(error)},
         )  # fmt: skip
+    except RecursionError:  # a value nested deeper than a field can be
+        return Result(file, ident, name, "error", "bad case: a field is nested too deeply")
     except Exception as error:  # noqa: BLE001 - a case shaped in a way not foreseen
         return Result(
             file, ident, name, "error",
@@ -739,12 +833,12 @@ def run_files(paths: Iterable[str | Path]) -> list[Result]:
         seen: set[Any] = set()
         for index, case in enumerate(doc["cases"]):
             result = run_case(case, str(p), index)
-            if isinstance(case, dict) and "id" in case:
-                if case["id"] in seen:
+            if isinstance(result.id, int):  # a well-formed id
+                if result.id in seen:
                     result = Result(
-                        str(p), case["id"], result.name, "error",
-                        f"bad case: field 'id': duplicate id {case['id']!r}", extra={"field": "id"},
+                        str(p), result.id, result.name, "error",
+                        f"bad case: field 'id': duplicate id {result.id}", extra={"field": "id"},
                     )  # fmt: skip
-                seen.add(case["id"])
+                seen.add(result.id)
             results.append(result)
     return results

@@ -70,7 +70,12 @@ def strerror(status: int) -> str:
 
 
 def error_for(
-    status: int, context: str, *, index: int | None = None, item: str = "element"
+    status: int,
+    context: str,
+    *,
+    index: int | None = None,
+    item: str = "element",
+    arg: str | None = None,
 ) -> IsectError:
     """Build the exception for a negative status code.
 
@@ -79,18 +84,27 @@ def error_for(
         context: what was being done, e.g. ``"Sphere.intersect"``.
         index: the flat index of the offending element of a batch, if any.
         item: what the batch holds ("ray", "point"), for the message.
+        arg: the argument that holds the offending value, e.g. ``"radius"``.
+
+    The message reads "context: arg: item index: description".
     """
     cls = STATUS_ERRORS.get(status, IsectError)
     where = f"{context}: " if context else ""
+    named = f"{arg}: " if arg else ""
     which = f"{item} {index}: " if index is not None else ""
-    return cls(f"{where}{which}{strerror(status)}", index=index)
+    return cls(f"{where}{named}{which}{strerror(status)}", index=index)
 
 
-def check(status: int, context: str) -> int:
+def check(status: int, context: str, arg: str | None = None) -> int:
     """Return a non-negative status unchanged; raise the mapped error otherwise."""
     if status < 0:
-        raise error_for(int(status), context)
+        raise error_for(int(status), context, arg=arg)
     return int(status)
+
+
+def nonfinite(message: str) -> NonFiniteError:
+    """A :class:`NonFiniteError` for a problem found in Python."""
+    return NonFiniteError(message)
 
 
 def invalid(message: str) -> InvalidArgumentError:

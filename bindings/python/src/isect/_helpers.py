@@ -13,6 +13,7 @@ from ._isect import ffi, lib
 from ._shape import raise_bad_element
 
 _INT32_MIN = -(2**31)
+_RULE_VALUES = (int(lib.ISECT_EVEN_ODD), int(lib.ISECT_NONZERO))
 
 
 def version() -> str:
@@ -46,6 +47,7 @@ def polygon_normal(vertices: ArrayLike) -> npt.NDArray[np.float64]:
             ffi.from_buffer("double[]", v), v.shape[0], ffi.from_buffer("double[]", out)
         ),
         "polygon_normal",
+        "vertices",
     )
     return out
 
@@ -65,6 +67,7 @@ def plane_from_points(vertices: ArrayLike) -> npt.NDArray[np.float64]:
             ffi.from_buffer("double[]", v), v.shape[0], ffi.from_buffer("double[]", out)
         ),
         "plane_from_points",
+        "vertices",
     )
     return out
 
@@ -108,12 +111,13 @@ def point_in_polygon(polygon: ArrayLike, points: ArrayLike, rule: Rule = "evenod
             pp, poly.shape[0], qp, pts.shape[0], r, ffi.from_buffer("uint8_t[]", inside)
         ),
         "point_in_polygon",
+        "rule" if r not in _RULE_VALUES else "polygon",
     )
     bad = inside == lib.ISECT_INVALID
     if bad.any():
         i = int(bad.argmax())
         status = lib.isect_point_in_polygon2(pp, poly.shape[0], qp + 2 * i, r)
-        raise_bad_element(status, "point_in_polygon", i, "point")
+        raise_bad_element(status, "point_in_polygon", i, "point", "points")
     result = inside.view(np.bool_).reshape(shape)
     return bool(result) if shape == () else result
 
@@ -143,11 +147,12 @@ def winding_number(polygon: ArrayLike, points: ArrayLike) -> Any:
             pp, poly.shape[0], qp, pts.shape[0], ffi.from_buffer("int32_t[]", winding)
         ),
         "winding_number",
+        "polygon",
     )
     bad = winding == _INT32_MIN
     if bad.any():
         i = int(bad.argmax())
         status = lib.isect_winding_number2(pp, poly.shape[0], qp + 2 * i, ffi.new("int32_t *"))
-        raise_bad_element(status, "winding_number", i, "point")
+        raise_bad_element(status, "winding_number", i, "point", "points")
     result = winding.reshape(shape)
     return int(result) if shape == () else result

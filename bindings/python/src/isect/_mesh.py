@@ -21,7 +21,7 @@ from . import _batch
 from ._args import ArrayLike, as_points, as_rows, as_threads
 from ._errors import InvalidArgumentError, check, error_for, invalid
 from ._isect import ffi, lib
-from ._shape import Solid, readonly_view
+from ._shape import Solid, frozen, readonly_view
 
 #: Faces: an (F, k) integer array (k = 3: triangles; k > 3: polygons of k
 #: vertices each) or a sequence of index sequences (polygons of any sizes).
@@ -141,6 +141,7 @@ class Mesh(Solid):
     __slots__ = ("_handle", "_indices", "_offsets")
 
     _type = lib.ISECT_MESH
+    _layout = (("vertices", 0),)
 
     _handle: Any
     _indices: npt.NDArray[np.int32]
@@ -163,6 +164,15 @@ class Mesh(Solid):
         """
         verts = as_rows(vertices, 3, "vertices")
         idx, offsets, nf = _as_faces(faces)
+        if idx.size and idx.max() >= verts.shape[0]:
+            raise invalid(
+                f"faces: vertex index {int(idx.max())} out of range for "
+                f"{verts.shape[0]} vertices"
+            )
+        if offsets is not None and nf and np.diff(offsets).min() < 3:
+            f = int(np.diff(offsets).argmin())
+            raise invalid(f"faces: face {f} has {int(offsets[f + 1] - offsets[f])} vertices "
+                          "(at least 3)")
         if offsets is None and idx.size != 3 * nf:  # pragma: no cover - by construction
             raise invalid("faces: triangle indices are not 3 per face")
         out = ffi.new("isect_mesh **")
@@ -176,14 +186,12 @@ class Mesh(Solid):
                 out,
             ),
             "Mesh",
+            "vertices" if not np.isfinite(verts).all() else "faces",
         )
         size = int(lib.isect_mesh_bytes(out[0]))
         self._handle = ffi.gc(out[0], lib.isect_mesh_destroy, size=size)
-        idx.flags.writeable = False
-        if offsets is not None:
-            offsets.flags.writeable = False
-        self._indices = idx
-        self._offsets = offsets
+        self._indices = frozen(idx)
+        self._offsets = None if offsets is None else frozen(offsets)
         self._setup(verts)
 
     def _geometry(self) -> tuple[Any, Any]:
@@ -335,7 +343,8 @@ class Mesh(Solid):
         bad = np.isnan(w)
         if bad.any():
             index = int(bad.argmax())
-            raise error_for(int(lib.ISECT_E_NONFINITE), name, index=index, item="point")
+            raise error_for(int(lib.ISECT_E_NONFINITE), name, index=index, item="point",
+                            arg="points")
         return float(w[0]) if shape == () else w.reshape(shape)
 
     # ------------------------------------------------------------ internals

@@ -26,13 +26,19 @@ from . import _batch
 from ._args import (
     ArrayLike,
     Vector3,
+    as_float_array,
+    as_int32,
     as_matrix4,
     as_points,
     as_ray_array,
+    as_records,
+    as_scalar,
     as_threads,
+    as_vector,
     make_opts,
     make_rays,
     ray_columns,
+    ray_culprit,
     raise_on_bad,
 )
 from ._errors import IsectError, check, error_for, invalid
@@ -42,6 +48,7 @@ from ._types import HIT_DTYPE, KIND_BY_VALUE, RAY_DTYPE, Hit
 _KINDS = KIND_BY_VALUE
 
 S = TypeVar("S", bound="Shape")
+T = TypeVar("T", bound=np.generic)
 
 _INVALID = int(lib.ISECT_INVALID)
 # struct layouts of one isect_hit / isect_ray, for single-ray queries; they hold
@@ -97,6 +104,14 @@ _tuple_new = tuple.__new__
 #: other input takes the general path.
 _PLAIN_NUMBERS = frozenset((float, int, np.float64))
 _F8 = np.dtype(np.float64)
+
+
+def _all_plain(a: object, b: object, c: object, d: object, e: object, f: object, g: object,
+               h: object) -> bool:
+    """The 8 numbers of a ray are plain numbers (types of ``_PLAIN_NUMBERS``)."""
+    p = _PLAIN_NUMBERS
+    return (type(a) in p and type(b) in p and type(c) in p and type(d) in p and type(e) in p
+            and type(f) in p and type(g) in p and type(h) in p)
 
 
 def _plain_vector(v: object) -> Sequence[float] | None:
@@ -189,9 +204,8 @@ class Shape:
     # ------------------------------------------------------------ building
 
     def _setup(self, data: npt.NDArray[np.float64], n: int = 0, flags: int = 0) -> None:
-        """Adopt ``data`` (a fresh contiguous float64 array) and build the descriptor."""
-        data.flags.writeable = False
-        self._data = data
+        """Adopt (a frozen copy of) ``data`` and build the descriptor."""
+        self._data = frozen(data)
         self._n = n
         self._flags = flags
         self._matrix = None
@@ -213,9 +227,36 @@ class Shape:
         c.xform = ffi.NULL
         # Counting the hits of a valid ray with the untransformed shape reports
         # exactly the errors of the shape's own numbers, n and flags.
-        check(lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0), type(self).__name__)
+        status = lib.isect_intersect(c, _PROBE_RAY, ffi.NULL, ffi.NULL, 0)
+        if status < 0:
+            raise error_for(status, type(self).__name__, arg=self._blame(status))
         c.xform = self._xform
         self._c = c
+
+    #: The constructor's numeric arguments in the order of the data array:
+    #: (name, count of doubles; 0 for "all the rest").
+    _layout: ClassVar[tuple[tuple[str, int], ...]] = ()
+
+    def _blame(self, status: int) -> str | None:
+        """The constructor argument that holds what libisect refused
+        (``status``), for the message: the first with a NaN or infinity for
+        ISECT_E_NONFINITE, :meth:`_blame_arg` for ISECT_E_ARG."""
+        if status == lib.ISECT_E_NONFINITE:
+            at = 0
+            for name, count in self._layout:
+                part = self._data[at:] if count == 0 else self._data[at:at + count]
+                if not np.isfinite(part).all():
+                    return name
+                at += count
+            return None
+        if status == lib.ISECT_E_ARG:
+            return self._blame_arg()
+        return None
+
+    def _blame_arg(self) -> str | None:
+        """The argument an ISECT_E_ARG of the constructor is about (the rules
+        of isect.h for the type: a negative radius, lo > hi, ...)."""
+        return None
 
     def _geometry(self) -> tuple[Any, Any]:
         """The descriptor's ``data`` and ``mesh`` pointers: the shape's own
@@ -260,10 +301,10 @@ class Shape:
         check(
             lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
             f"{type(self).__name__}.transformed",
+            "matrix",
         )
-        m.flags.writeable = False
         new = copy.copy(self)
-        new._matrix = m
+        new._matrix = frozen(m)
         new._xform = xform
         new._describe()
         return new
@@ -382,13 +423,23 @@ class Shape:
         try:
             ox, oy, oz = origin
             dx, dy, dz = direction
+            # Plain numbers only (floats first: the common case, and cheap).
+            if not (
+                type(ox) is float and type(oy) is float and type(oz) is float
+                and type(dx) is float and type(dy) is float and type(dz) is float
+                and type(tmin) is float and type(tmax) is float
+            ) and not _all_plain(ox, oy, oz, dx, dy, dz, tmin, tmax):
+                raise TypeError
             _pack_ray(ray_bytes, 0, ox, oy, oz, dx, dy, dz, tmin, tmax)
-        except (TypeError, ValueError, struct.error):
-            raise invalid(
-                f"{type(self).__name__}.intersect_all: origin and direction must be "
-                "3 numbers each, tmin and tmax numbers"
-            ) from None
-        if eps is None and not cull_back and not any_hit:
+        except (TypeError, ValueError, OverflowError, struct.error):
+            # Anything but plain numbers (or an int beyond the doubles): the
+            # general conversion, which names the argument it refuses.
+            _pack_ray(
+                ray_bytes, 0, *as_vector(origin, 3, "origin").tolist(),
+                *as_vector(direction, 3, "direction").tolist(),
+                as_scalar(tmin, "tmin"), as_scalar(tmax, "tmax"),
+            )
+        if eps is None and cull_back is False and any_hit is False:
             opts = _NULL
         else:
             opts = make_opts(eps, cull_back, any_hit)
@@ -399,7 +450,9 @@ class Shape:
             ray_bytes2[:] = ray_bytes
             n = _c_intersect(self._c, ray2, opts, hits, cap)
         if n < 0:
-            raise error_for(n, f"{type(self).__name__}.intersect_all")
+            org, dirn, lo, hi = ray.org, ray.dir, ray.tmin, ray.tmax
+            culprit = ray_culprit(org, dirn, lo, hi, ("origin", "direction", "tmin", "tmax"))
+            raise error_for(n, f"{type(self).__name__}.intersect_all", arg=culprit)
         out = []
         for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
             t, px, py, pz, nx, ny, nz, u, v, prim, kind = _unpack_hit(hit_bytes, offset)
@@ -556,7 +609,10 @@ class Shape:
 
         for status, index in _batch.run(work, n, as_threads(threads)):
             if status < 0:
-                raise error_for(status, name, index=index, item="hit")
+                d = dflat[index * dir_step:index * dir_step + 3]
+                bad_dir = not np.isfinite(d).all() or not d.any()
+                raise error_for(status, name, index=index, item="hit",
+                                arg="directions" if bad_dir else "hits")
         return out.reshape(shape)[()] if shape == () else out.reshape(shape)
 
     # ------------------------------------------------------------ internals
@@ -594,7 +650,8 @@ class Shape:
         if raising:
             first = [b for _, b in results if b >= 0]
             if first:
-                self._raise_bad_ray(rp, first[0], opts, name)
+                args = ("rays",) if method == "intersect_rays" else _RAY_ARGS
+                self._raise_bad_ray(rp, first[0], opts, name, args)
         return hits
 
     def _closest_soa(
@@ -637,15 +694,18 @@ class Shape:
                 one, _ = make_rays(org[index * org_step:index * org_step + 3],
                                    dirs[index * dir_step:index * dir_step + 3],
                                    lo[index * lo_step], hi[index * hi_step])
-                status = lib.isect_intersect(c, ffi.from_buffer("isect_ray[]", one), opts,
-                                             ffi.NULL, 0)
-                raise_bad_element(status, name, index, "ray")
+                rp = ffi.from_buffer("isect_ray[]", one)
+                status = lib.isect_intersect(c, rp, opts, ffi.NULL, 0)
+                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS))
         return hits, shape
 
-    def _raise_bad_ray(self, rp: Any, index: int, opts: Any, name: str) -> None:
-        """Raise the error the scalar call reports for the batch's bad ray."""
+    def _raise_bad_ray(
+        self, rp: Any, index: int, opts: Any, name: str, args: Sequence[str] = ()
+    ) -> None:
+        """Raise the error the scalar call reports for the batch's bad ray,
+        naming which of ``args`` (origins, directions, tmin, tmax) holds it."""
         status = lib.isect_intersect(self._c, rp + index, opts, ffi.NULL, 0)
-        raise_bad_element(status, name, index, "ray")
+        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS))
 
     def _repr_fields(self) -> str:
         """The constructor arguments, for repr()."""
@@ -715,7 +775,8 @@ class Solid(Shape):
         bad = inside == _INVALID
         if bad.any():
             index = int(bad.argmax())
-            raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point")
+            raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point",
+                              "points")
         result = inside.view(np.bool_).reshape(shape)
         return bool(result) if shape == () else result
 
@@ -731,20 +792,16 @@ def _as_hit_array(hits: Any, name: str) -> np.ndarray:
         isinstance(hits, (list, tuple)) and hits and all(isinstance(h, Hit) for h in hits)
     ):
         rows = [hits] if isinstance(hits, Hit) else list(hits)
-        try:
-            a = np.array(
-                [(h.t, h.point, h.normal, h.uv, h.prim, int(h.kind)) for h in rows],
-                dtype=HIT_DTYPE,
-            )
-        except (TypeError, ValueError) as exc:
-            raise invalid(f"{name}: hits: not a Hit ({exc})") from None
+        a = np.zeros(len(rows), dtype=HIT_DTYPE)
+        for field, shape in (("t", ()), ("point", (3,)), ("normal", (3,)), ("uv", (2,))):
+            column = as_float_array([getattr(h, field) for h in rows], f"hits.{field}")
+            if column.shape != (len(rows), *shape):
+                raise invalid(f"hits.{field}: expected {shape or 'a number'} per hit")
+            a[field] = column
+        for field in ("prim", "kind"):
+            a[field] = [as_int32(getattr(h, field), f"hits.{field}") for h in rows]
         return a.reshape(()) if isinstance(hits, Hit) else a
-    a = np.asarray(hits)
-    if a.dtype == HIT_DTYPE:
-        return a
-    if a.dtype.names is not None and set(a.dtype.names) == set(HIT_DTYPE.names or ()):
-        return a.astype(HIT_DTYPE)
-    raise invalid(f"{name}: hits: expected HIT_DTYPE records or Hit tuples, got dtype {a.dtype}")
+    return as_records(hits, HIT_DTYPE, "hits", "HIT_DTYPE records or Hit tuples")
 
 
 def _flat_contiguous(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
@@ -754,16 +811,31 @@ def _flat_contiguous(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
     return np.ascontiguousarray(a).reshape(-1)
 
 
-def raise_bad_element(status: int, name: str, index: int, item: str) -> None:
+#: The arguments of a ray, as Shape.intersect names them.
+_RAY_ARGS = ("origins", "directions", "tmin", "tmax")
+
+
+def _ray_arg(ray: Any, args: Sequence[str]) -> str:
+    """Which of ``args`` holds the problem of the bad ``isect_ray`` ``ray``
+    (one name when ``args`` is a single name, as for ``intersect_rays``)."""
+    if len(args) == 1:
+        return args[0]
+    return ray_culprit(ray.org, ray.dir, ray.tmin, ray.tmax, args)
+
+
+def raise_bad_element(
+    status: int, name: str, index: int, item: str, arg: str | None = None
+) -> None:
     """Raise for element ``index`` that a batch call marked INVALID, with the
-    error the matching scalar call reports for it (``status``)."""
+    error the matching scalar call reports for it (``status``), naming the
+    argument ``arg`` that holds it."""
     if status >= 0:
         raise IsectError(
             f"{name}: {item} {index} was marked INVALID by the batch call, "
             "but the scalar call accepts it",
             index=index,
         )
-    raise error_for(status, name, index=index, item=item)
+    raise error_for(status, name, index=index, item=item, arg=arg)
 
 
 def _rebuild(
@@ -777,6 +849,21 @@ def _rebuild(
     shape = cls.__new__(cls)
     shape._setup(np.array(data, dtype=np.float64, order="C", copy=True), n, flags)
     return shape if matrix is None else shape.transformed(matrix)
+
+
+def frozen(a: npt.NDArray[T]) -> npt.NDArray[T]:
+    """A read-only C-contiguous copy of ``a`` that can never be made writeable.
+
+    Its memory is an immutable ``bytes`` object, so numpy refuses
+    ``flags.writeable = True`` on it and on every view of it (ValueError:
+    "cannot set WRITEABLE flag to True of this array"); an array that owns its
+    memory would allow it. Shapes keep their numbers (and meshes their
+    indices) in such arrays: what the C descriptor points at cannot change.
+    """
+    out = np.frombuffer(np.ascontiguousarray(a).tobytes(), dtype=a.dtype).reshape(a.shape)
+    if not out.flags.aligned:  # pragma: no cover - bytes data is 8-byte aligned
+        out = np.frombuffer(bytes(out.tobytes()), dtype=a.dtype).reshape(a.shape)
+    return out
 
 
 def readonly_view(a: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:

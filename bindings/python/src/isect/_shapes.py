@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from ._args import ArrayLike, Rule, as_int, as_rows, as_rule, as_scalar, as_vector
+from ._args import ArrayLike, Rule, as_int32, as_rows, as_rule, as_scalar, as_vector
 from ._isect import lib
 from ._shape import Shape, Solid, readonly_view
 
@@ -38,6 +38,7 @@ class Plane(Shape):
 
     __slots__ = ()
     _type = lib.ISECT_PLANE
+    _layout = (("normal", 3), ("d", 1))
 
     def __init__(self, normal: ArrayLike, d: float) -> None:
         """Args: normal — 3 numbers (any length); d — the offset."""
@@ -66,6 +67,11 @@ class Sphere(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_SPHERE
+    _layout = (("center", 3), ("radius", 1))
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: a negative radius."""
+        return "radius"
 
     def __init__(self, center: ArrayLike, radius: float) -> None:
         """Args: center — 3 numbers; radius — >= 0."""
@@ -96,6 +102,11 @@ class Box(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_AABB
+    _layout = (("lo", 3), ("hi", 3))
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: lo > hi in some axis."""
+        return "lo, hi"
 
     def __init__(self, lo: ArrayLike, hi: ArrayLike) -> None:
         """Args: lo, hi — the minimum and maximum corners, 3 numbers each."""
@@ -126,6 +137,7 @@ class Triangle(Shape):
 
     __slots__ = ()
     _type = lib.ISECT_TRIANGLE
+    _layout = (("a", 3), ("b", 3), ("c", 3))
 
     def __init__(self, a: ArrayLike, b: ArrayLike, c: ArrayLike) -> None:
         """Args: a, b, c — the vertices, 3 numbers each."""
@@ -168,6 +180,11 @@ class Polygon(Shape):
 
     __slots__ = ()
     _type = lib.ISECT_POLYGON
+    _layout = (("vertices", 0),)
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: fewer than 3 vertices, or an unknown rule."""
+        return "vertices" if self._n < 3 else "rule"
 
     def __init__(self, vertices: ArrayLike, rule: Rule = "evenodd") -> None:
         """Args: vertices — (n, 3); rule — "evenodd" or "nonzero"."""
@@ -200,6 +217,11 @@ class ConvexPolyhedron(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_CONVEX
+    _layout = (("planes", 0),)
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: no plane."""
+        return "planes"
 
     def __init__(self, planes: ArrayLike) -> None:
         """Args: planes — (m, 4) rows a, b, c, d."""
@@ -227,13 +249,18 @@ class Cylinder(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_CYLINDER
+    _layout = (("p0", 3), ("p1", 3), ("radius", 1))
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: a capped flag other than 0 / 1, or a negative radius."""
+        return "capped" if self._flags not in (0, lib.ISECT_CAPPED) else "radius"
 
     def __init__(self, p0: ArrayLike, p1: ArrayLike, radius: float, capped: bool = True) -> None:
         """Args: p0, p1 — the axis end points; radius — >= 0; capped — closed or open."""
         if isinstance(capped, (bool, np.bool_)):
             flags = lib.ISECT_CAPPED if capped else 0
         else:  # an integer is passed through to C, which accepts 0 and ISECT_CAPPED
-            flags = as_int(capped, "capped")
+            flags = as_int32(capped, "capped")
         data = _pack(as_vector(p0, 3, "p0"), as_vector(p1, 3, "p1"), _num(radius, "radius"))
         self._setup(data, flags=flags)
 
@@ -271,6 +298,11 @@ class InfiniteCylinder(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_CYLINDER_INF
+    _layout = (("point", 3), ("axis", 3), ("radius", 1))
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: a negative radius."""
+        return "radius"
 
     def __init__(self, point: ArrayLike, axis: ArrayLike, radius: float) -> None:
         """Args: point — on the axis; axis — its direction (any length); radius — >= 0."""
@@ -306,6 +338,11 @@ class Ellipsoid(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_ELLIPSOID
+    _layout = (("center", 3), ("radii", 3))
+
+    def _blame_arg(self) -> str | None:
+        """ISECT_E_ARG: a negative radius."""
+        return "radii"
 
     def __init__(self, center: ArrayLike, radii: ArrayLike) -> None:
         """Args: center — 3 numbers; radii — 3 semi-axes >= 0."""
@@ -333,6 +370,7 @@ class Quadric(Solid):
 
     __slots__ = ()
     _type = lib.ISECT_QUADRIC
+    _layout = (("coeffs", 10),)
 
     def __init__(self, coeffs: ArrayLike) -> None:
         """Args: coeffs — the 10 coefficients A..J."""
