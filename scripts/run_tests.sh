@@ -54,6 +54,11 @@ step "test_lanes 350,000 rays per shape" sh -c \
     "$B/tests/test_lanes 350000 >$B/lanes.out 2>&1; rc=\$?; cat $B/lanes.out; exit \$rc"
 step "test_lanes [no SIMD]: the same digest" sh -c \
     "a=\$(grep digest $B/lanes.out); b=\$($B/nosimd/tests/test_lanes 350000 | grep digest); echo \"SIMD \$a, portable \$b\"; [ -n \"\$a\" ] && [ \"\$a\" = \"\$b\" ]"
+# Exactly-once on closed meshes with injected degeneracies (zero-area and
+# collinear faces, coincident vertices, repeated indices, slivers of
+# rounding, ~1e+-150 coordinates): 10^6 rays, parity against an exact
+# containment reference (the long run is the same with 100000000).
+step "test_degenerate_mesh 10^6 rays" $B/tests/test_degenerate_mesh 1000000
 # Secondary rays: 10^6 spawned rays per shape (reflected, refracted-like and
 # random directions) never re-hit the surface they leave, never skip a close
 # second surface.

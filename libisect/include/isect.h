@@ -19,8 +19,13 @@
  *    may be 0 with hits NULL to count only.
  *  - A negative return value is an error status (ISECT_E_*); isect_strerror()
  *    describes it. Nothing is written to the hit buffer on error. No function
- *    aborts, prints, allocates (except mesh creation) or keeps global state;
- *    all are reentrant.
+ *    aborts, prints or keeps global state; all are reentrant. Two functions
+ *    allocate and can fail with ISECT_E_NOMEM: isect_mesh_create (the mesh)
+ *    and isect_mesh_check (working arrays of the size of the mesh's face
+ *    corners, freed before it returns). isect_intersect_batch on a mesh
+ *    allocates its traversal lanes when it can and otherwise traces the same
+ *    records without them: it never fails for memory. Nothing else
+ *    allocates.
  *  - Degenerate geometry that real data contains (zero-area triangle, collinear
  *    polygon, zero radius, zero-length cylinder axis, zero plane normal, flat
  *    box) is not an error: it is never hit and contains no point.
@@ -235,8 +240,11 @@ typedef struct isect_mesh_report {
                                      (2 - chi_c)/2; -1 when not closed and oriented */
     int32_t closed;               /* 1: no boundary and no non-manifold edges */
     int32_t oriented;             /* 1: no misoriented edges */
-    double  volume;               /* signed (divergence theorem); > 0 for outward faces */
-    double  area;
+    double  volume;               /* signed (divergence theorem); > 0 for outward faces;
+                                     +-inf when it exceeds the double range (a mesh
+                                     ~1e103 across), 0 or subnormal below it */
+    double  area;                 /* inf when it exceeds the double range (~1e154
+                                     across); never NaN for a valid mesh */
     int64_t reserved[3];
 } isect_mesh_report;
 
@@ -435,7 +443,10 @@ ISECT_API int isect_mesh_create(const double *verts, int64_t nv, const int32_t *
 /* Free a mesh; NULL is a no-op. */
 ISECT_API void isect_mesh_destroy(isect_mesh *mesh);
 
-/* Topology and measures of the mesh (see isect_mesh_report). */
+/* Topology and measures of the mesh (see isect_mesh_report). ISECT_OK;
+ * ISECT_E_ARG for NULL; ISECT_E_NOMEM when its working arrays (edge uses
+ * and components: a few tens of bytes per face corner) cannot be
+ * allocated, with *report untouched. */
 ISECT_API int isect_mesh_check(const isect_mesh *mesh, isect_mesh_report *report);
 
 /* Bytes the mesh occupies (its copy of the input and the BVH). */

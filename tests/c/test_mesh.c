@@ -1118,6 +1118,57 @@ static void test_degenerate(void)
     fx_free(&m);
 }
 
+/* isect_mesh_check's volume and area at extreme scales (issue 13: NaN
+ * volume from ~1e103, NaN area from ~1e154, where products of coordinates
+ * overflowed and inf - inf followed): the corner tetrahedron of side s has
+ * volume s^3/6 and area s^2 (3 + sqrt 3)/2; each is finite and within
+ * 1e-14 when the true value is in the double range, +-inf beyond it
+ * (isect.h), and never NaN. Also far from the origin and inside out. */
+static void test_report_extreme_scale(void)
+{
+    static const double sides[] = { 1e103, 1e-103, 1e153, 1e154, 1e-154, 1e300, 0x1p-600, 1.0 };
+    static const int32_t tet[12] = { 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3 };
+    for (size_t i = 0; i < sizeof sides / sizeof sides[0]; i++) {
+        for (int variant = 0; variant < 3; variant++) {
+            double s = sides[i], shift = variant == 1 ? 3.0 * s : 0.0;
+            double v[12] = { 0, 0, 0, s, 0, 0, 0, s, 0, 0, 0, s };
+            for (int k = 0; k < 12; k++)
+                v[k] += shift;
+            int32_t idx[12];
+            memcpy(idx, tet, sizeof idx);
+            if (variant == 2) /* inside out: negative volume */
+                for (int f = 0; f < 4; f++) {
+                    int32_t t = idx[3 * f + 1];
+                    idx[3 * f + 1] = idx[3 * f + 2];
+                    idx[3 * f + 2] = t;
+                }
+            isect_mesh *mesh = NULL;
+            CHECK_EQ_INT(isect_mesh_create(v, 4, idx, NULL, 4, &mesh), ISECT_OK);
+            isect_mesh_report r;
+            CHECK_EQ_INT(isect_mesh_check(mesh, &r), ISECT_OK);
+            /* The true values' binary exponents decide the expectation:
+             * beyond 2^1024 inf, below 2^-1020 (subnormal) only small, else
+             * the value itself (each formula's roundings: a few ulp). */
+            double sign = variant == 2 ? -1.0 : 1.0, k = 0.5 * (3.0 + sqrt(3.0));
+            double l3 = 3.0 * log2(s) - log2(6.0), l2 = 2.0 * log2(s) + log2(k);
+            CHECK(!isnan(r.volume) && !isnan(r.area));
+            if (l3 >= 1024.0)
+                CHECK(r.volume == sign * INFINITY);
+            else if (l3 < -1020.0)
+                CHECK(fabs(r.volume) <= 0x1p-1000);
+            else
+                CHECK_NEAR(r.volume / (s / 6.0 * s * s), sign, 1e-14);
+            if (l2 >= 1024.0)
+                CHECK(r.area == INFINITY);
+            else if (l2 < -1020.0)
+                CHECK(r.area <= 0x1p-1000);
+            else
+                CHECK_NEAR(r.area / (s * (s * k)), 1.0, 1e-14);
+            isect_mesh_destroy(mesh);
+        }
+    }
+}
+
 int main(void)
 {
     test_create_destroy();
@@ -1131,5 +1182,6 @@ int main(void)
     test_contains_vs_rays();
     test_report();
     test_degenerate();
+    test_report_extreme_scale();
     return check_summary();
 }

@@ -20,7 +20,8 @@ Inside ``deciding_exactly()`` (the accuracy harness, tests/accuracy) the
 design refusals (``refuse``) return instead of raising and every such
 decision is taken exactly; only ``PrecisionError`` (the working precision
 ``mpmath.mp.dps`` cannot separate two values) and the cases the contract
-leaves undefined still raise.  The corpus generator never enters that mode.
+leaves undefined still raise.  The corpus generator enters that mode only
+for the cases flagged "rounded-frame" (generate.py: "_exact").
 """
 from __future__ import annotations
 

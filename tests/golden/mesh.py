@@ -352,6 +352,33 @@ def with_degenerate() -> dict:
             "faces": m["faces"] + [[8, 9, 10]]}
 
 
+def cube_zero_area_face(polygons: bool = False, quarters: bool = False) -> dict:
+    """Issue 13's closed cube with a zero-area face: v3 = (0, 0, 1/2) is the
+    midpoint of the cube edge v0-v4, the x = 0 side uses the run 0 -> 3 -> 4,
+    the y = 0 side the edge 4 -> 0, and the face (3, 0, 4) of three collinear
+    vertices closes the T-junction (edges 3 -> 0, 0 -> 4, 4 -> 3 pair with
+    their reverses: closed and oriented).  Triangles, or (polygons) quads and
+    the x = 0 side as a pentagon with the collinear run; quarters: the run
+    also through q1 = (0, 0, 1/4) and q3 = (0, 0, 3/4) (vertices 9, 10) and
+    the zero-area face the collinear pentagon (0, 4, 10, 3, 9)."""
+    vs = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 0, 0.5), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 1, 0),
+          (0, 0, 0.25), (0, 0, 0.75)]
+    quads = [[1, 2, 6, 5],   # x = 1
+             [0, 1, 5, 4],   # y = 0 (edge 4 -> 0)
+             [8, 7, 6, 2],   # y = 1
+             [0, 8, 2, 1],   # z = 0
+             [4, 5, 6, 7]]   # z = 1
+    run = [0, 9, 3, 10, 4] if quarters else [0, 3, 4]
+    if polygons:
+        faces = quads + [run + [7, 8]]
+    else:
+        faces = [t for f in quads for t in ([f[0], f[1], f[2]], [f[0], f[2], f[3]])]
+        faces += [[run[i], run[i + 1], 7 if i + 1 >= len(run) // 2 + 1 else 8] for i in range(len(run) - 1)]
+        faces += [[run[len(run) // 2], 7, 8]]
+    faces.append([0, 4, 10, 3, 9] if quarters else [3, 0, 4])
+    return mesh(vs, faces)
+
+
 # ------------------------------------------------------------------ cases
 def up(x: float, y: float, z0: float = -1) -> dict:
     return ray((x, y, z0), (0, 0, 1))
@@ -488,6 +515,30 @@ def cases() -> list[dict]:
     hit("book: a line through two of the three pages", ["nonmanifold", "negative-t"], book(),
         ray((-0.5, 0, 0.5), (0, 1, 0), tmin=-INF))
     hit("degenerate face is never hit", ["degenerate", "miss"], with_degenerate(), ray((3, 0.5, -1), (0, 0, 1)))
+    # Issue 13: a zero-area face closing a T-junction in a closed cube; rays through the collinear
+    # run (its midpoint vertex, points of its two halves), from outside and inside, along it.
+    zc, zp, zq = cube_zero_area_face(), cube_zero_area_face(polygons=True), cube_zero_area_face(True, True)
+    for zname, zm, zflags in (("zero-area face cube", zc, []), ("zero-area face cube (pentagon)", zp,
+                                                                  ["polygon-faces"]),
+                              ("zero-area face cube (collinear pentagon)", zq, ["polygon-faces"])):
+        f = ["degenerate", "parity"] + zflags
+        hit(f"{zname}: from outside through the midpoint vertex", f + ["vertex"], zm,
+            ray((-1, -0.5, 0.25), (1, 0.5, 0.25)))
+        hit(f"{zname}: from outside through the edge below it", f + ["edge"], zm,
+            ray((-1, -0.5, 0.125), (1, 0.5, 0.125)))
+        hit(f"{zname}: from outside through the edge above it", f + ["edge"], zm,
+            ray((-0.5, -1, 0.5), (0.5, 1, 0.25)))
+        hit(f"{zname}: from inside out through the midpoint vertex", f + ["vertex", "inside"], zm,
+            ray((0.5, 0.25, 0.5), (-1, -0.5, 0)))
+        hit(f"{zname}: along the collinear edge", f + ["edge", "in-plane"], zm, ray((0, 0, -1), (0, 0, 1)))
+        hit(f"{zname}: eps = 0, through the edge", f + ["edge", "eps"], zm,
+            ray((-1, -0.5, 0.125), (1, 0.5, 0.125)), opts=opts(eps=0.0))
+    # The reported ray: with the shear rounded, it got one EXIT hit from outside (parity "inside").
+    for zname, zm in (("zero-area face cube", zc), ("zero-area face cube (pentagon)", zp)):
+        for dz in (1.013, 1.002):
+            hit(f"{zname}: the audit's ray (dir z {dz}) past the run", ["degenerate", "rounded-frame", "parity"],
+                zm, ray((-1, -0.7, -0.3), (1, 0.7, dz)), opts=opts(eps=0.0))
+            c[-1]["_exact"] = True
     hit("empty mesh (no faces) is never hit", ["empty-mesh", "miss"], mesh(CUBE_V, []), up(0.5, 0.5))
 
     # --- containment
@@ -526,6 +577,13 @@ def cases() -> list[dict]:
     inside("two cubes: between them", ["components", "mixed-faces"], tc, (1.5, 0.5, 0.5))
     inside("cube with a flipped face: parity still decides", ["misoriented", "polygon-faces"], flipped,
            (0.5, 0.5, 0.5))
+    inside("zero-area face cube: centre", ["degenerate"], zc, (0.5, 0.5, 0.5))
+    inside("zero-area face cube: outside, +x ray through the midpoint vertex", ["degenerate", "vertex"], zc,
+           (-0.5, 0, 0.5))
+    inside("zero-area face cube: inside, +x ray along y = 0 past the run", ["degenerate", "in-plane"], zc,
+           (0.5, 0, 0.25))
+    inside("zero-area face cube (collinear pentagon): on the run", ["degenerate", "boundary", "polygon-faces"],
+           zq, (0, 0, 0.375))
 
     # --- report
     def check(name, flags, shape):
@@ -542,6 +600,8 @@ def cases() -> list[dict]:
     check("two cubes: 2 components", ["components", "mixed-faces"], tc)
     check("book: 1 non-manifold edge", ["nonmanifold"], book())
     check("a degenerate face", ["degenerate"], with_degenerate())
+    check("zero-area face cube: closed, 1 degenerate face", ["degenerate"], zc)
+    check("zero-area face cube (collinear pentagon)", ["degenerate", "polygon-faces"], zq)
     check("empty mesh", ["empty-mesh"], mesh(CUBE_V, []))
     check("quad cube scaled by 1e3 far from the origin", ["far", "polygon-faces"],
           cube_quads((1e6, -2e6, 3e6), 1e3))

@@ -234,6 +234,9 @@ NOTES: dict[str, str] = {
                   "an even number for a graze.",
     "frame-swap": "dir[kz] < 0, so the sheared frame swaps kx and ky.",
     "frame-tie": "Two or three |dir| components are equal: kz is the lowest index.",
+    "rounded-frame": "The ray passes within a rounding error of an edge and its sheared projection is not "
+                     "exact in doubles: the expectation is decided exactly on the given doubles, as the "
+                     "face tests decide (issue 13's ray that a rounded projection counted once).",
     "graze": "The ray touches a box or polyhedron only at an edge or corner (entry == exit): "
              "one touch hit, prim the lowest face index involved.",
     "tie": "Several faces are reached at the same t (the ray crosses an edge or corner): "

@@ -12,10 +12,11 @@
  * vector-area lengths; both over each face's fan from its first vertex,
  * relative to the centre of the vertices' bounding box (so the sums do not
  * cancel the mesh's position away) and summed with Neumaier's compensated
- * summation.
+ * summation, in units scaled by powers of two (mesh_measures).
  */
 #include "mesh/mesh.h"
 
+#include "core/scaling.h"
 #include "core/vec3.h"
 
 #include <stdlib.h>
@@ -70,29 +71,57 @@ static void uf_union(int32_t *parent, int32_t a, int32_t b)
 
 /* ------------------------------------------------------------ measures */
 
+/* Vertex i in the measures' units: (p 2^-e1 - ref) 2^-e2. Both scalings
+ * are by powers of two (exact; only parts below 2^-1074 of the largest
+ * coordinate are lost to underflow, far below the sums' rounding). */
+static void measure_point(const isect_mesh *m, int32_t i, int e1, const double ref[3], int e2,
+                          double out[3])
+{
+    const double *p = mesh_vertex(m, i);
+    for (int k = 0; k < 3; k++)
+        out[k] = pow2_scale(pow2_scale(p[k], -e1) - ref[k], -e2);
+}
+
+/* Volume and area. Products of coordinates overflow from ~1e103 (volume,
+ * degree 3) and ~1e154 (area, degree 2), and inf - inf gave NaN, so the
+ * sums run in scaled units: the coordinates scaled by 2^-e1 (the largest
+ * below 1: nothing overflows), taken relative to the centre ref of their
+ * box, and scaled by 2^-e2 (the largest relative coordinate in [0.5, 1):
+ * tiny or far-away meshes keep their products normal). The results are
+ * scaled back by 2^(3(e1+e2)) and 2^(2(e1+e2)) once, at the end: +-inf
+ * exactly when the value exceeds the double range (isect.h), subnormal or
+ * 0 when below it. */
 static void mesh_measures(const isect_mesh *m, isect_mesh_report *r)
 {
+    double big = 0.0;
+    for (int64_t i = 0; i < 3 * m->vertex_count; i++)
+        big = fmax(big, fabs(m->verts[i]));
+    int e1 = big > 0.0 ? pow2_exponent(big) : 0;
     double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 0.0, 0.0, 0.0 };
     for (int64_t i = 0; i < m->vertex_count; i++) {
         const double *p = m->verts + 3 * i;
         for (int k = 0; k < 3; k++) {
-            lo[k] = i == 0 || p[k] < lo[k] ? p[k] : lo[k];
-            hi[k] = i == 0 || p[k] > hi[k] ? p[k] : hi[k];
+            double x = pow2_scale(p[k], -e1);
+            lo[k] = i == 0 || x < lo[k] ? x : lo[k];
+            hi[k] = i == 0 || x > hi[k] ? x : hi[k];
         }
     }
-    double ref[3];
-    for (int k = 0; k < 3; k++)
+    double ref[3], spread = 0.0;
+    for (int k = 0; k < 3; k++) {
         ref[k] = 0.5 * lo[k] + 0.5 * hi[k];
+        spread = fmax(spread, fmax(hi[k] - ref[k], ref[k] - lo[k]));
+    }
+    int e2 = spread > 0.0 ? pow2_exponent(spread) : 0;
     sum_acc volume = { 0.0, 0.0 }, area = { 0.0, 0.0 };
     for (int64_t f = 0; f < m->face_count; f++) {
         const int32_t *corner = m->idx + mesh_face_start(m, f);
         int size = mesh_face_size(m, f);
         double a[3], vector_area[3] = { 0.0, 0.0, 0.0 };
-        v3_sub(a, mesh_vertex(m, corner[0]), ref);
+        measure_point(m, corner[0], e1, ref, e2, a);
         for (int i = 1; i + 1 < size; i++) {
             double b[3], c[3], ab[3], ac[3], cross[3], bc[3];
-            v3_sub(b, mesh_vertex(m, corner[i]), ref);
-            v3_sub(c, mesh_vertex(m, corner[i + 1]), ref);
+            measure_point(m, corner[i], e1, ref, e2, b);
+            measure_point(m, corner[i + 1], e1, ref, e2, c);
             /* Tetrahedron (ref, a, b, c): a . (b x c) / 6. */
             v3_cross(bc, b, c);
             sum_add(&volume, v3_dot(a, bc) / 6.0);
@@ -103,8 +132,9 @@ static void mesh_measures(const isect_mesh *m, isect_mesh_report *r)
         }
         sum_add(&area, 0.5 * v3_norm(vector_area));
     }
-    r->volume = sum_value(&volume);
-    r->area = sum_value(&area);
+    int e = e1 + e2;
+    r->volume = ldexp(sum_value(&volume), 3 * e);
+    r->area = ldexp(sum_value(&area), 2 * e);
 }
 
 /* ------------------------------------------------------------- topology */

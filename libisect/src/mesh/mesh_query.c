@@ -575,8 +575,11 @@ static ALWAYS_INLINE int query_leaf_body(query *q, int mode, int32_t first, int3
         if (p->nverts == 3) {
             if (!triangle_candidate(q, p->v, ray->tmin, q->t_limit))
                 continue;
-            /* The plane precomputed (zero: the exact test never hits this
-             * face; degenerate faces are not in the BVH anyway). */
+            /* The plane precomputed. Zero only where the exact normal
+             * could not be rounded to a unit vector: never for a face of
+             * nonzero area within the exact range (planar.h,
+             * xp_normalize_up), and zero-area faces, which the exact test
+             * never claims, are not in the BVH. */
             if (p->n[0] == 0.0 && p->n[1] == 0.0 && p->n[2] == 0.0)
                 continue;
             int fast = q->fast_range >= 0 ? q->fast_range

@@ -19,6 +19,38 @@
 #include "prim/prim.h"
 #include "core/ray_frame.h"
 #include "core/expansion.h"
+#include "core/scaling.h"
+
+/* Scales the n expansions x[0..n) up by one power of two 2^k so that their
+ * largest part lies in [0.5, 1), and returns k; nothing (0) when that
+ * would scale down or by more than 2^limit. Exact: every part only grows
+ * and stays below 1. A face's vectors — its edges, its normal, the vertex
+ * minus the ray origin — are differences of coordinates scaled by 2^-e for
+ * the largest coordinate; for a face far smaller than its coordinates
+ * (extent 1 at 2^540) or an origin very near it they are tiny, and their
+ * products of degree 2 and 3 would fall below the underflow threshold,
+ * where expansions are no longer exact. Brought near 1 first, they keep
+ * every product exact while each vector's own components lie within about
+ * 2^300 of its largest. The normal's scale cancels in its direction and
+ * in num/den; a scaled A = a - o is matched by scaling den alike. */
+static inline int xp_normalize_up(xp *x, int n, int limit)
+{
+    double m = 0.0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < x[i].n; j++)
+            m = fmax(m, fabs(x[i].p[j]));
+    int k = m > 0.0 ? -pow2_exponent(m) : 0;
+    if (k <= 0 || k > limit)
+        return 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < x[i].n; j++)
+            x[i].p[j] = pow2_scale(x[i].p[j], k);
+    return k;
+}
+
+/* The largest shift xp_normalize_up takes for A = a - o: den (at most a
+ * few units) scaled by as much stays far below the overflow threshold. */
+#define XP_SHIFT_LIMIT 1000
 
 /* The unit normal of (b - a) x (c - a), accurate to about an ulp (the
  * cross product as a double-double from exact edges), for callers that

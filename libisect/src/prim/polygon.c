@@ -50,13 +50,23 @@ static double vertex_extent(const double *v, const int32_t *idx, int n)
 }
 
 /* The plane exactly: N = sum (v_i - v_0) x (v_{i+1} - v_0) and the sum of
- * the vertices, as expansions of the coordinates scaled by 2^-e (N is
- * then scaled by 2^-2e, the sum by 2^-e). */
+ * the vertices, as expansions of the coordinates scaled by 2^-e (the sum
+ * then scaled by 2^-e; N by some power of two: the edges v_i - v_0 are
+ * brought near 1 before their products, and N itself after, as planar.h's
+ * xp_normalize_up does for a triangle, so that a polygon far smaller than
+ * its coordinates keeps its normal above the underflow threshold. N's
+ * scale cancels in every use: its direction, and num/den.) */
 static void polygon_plane_exact(const double *v, const int32_t *idx, int n, int e, xp normal[3],
                                 xp sum[3])
 {
     const double *p0 = vertex_at(v, idx, 0);
     xp prev[3], cur[3], tmp, tmp2;
+    double reach = 0.0; /* the largest |v_i - v_0| (rounded: it only picks s) */
+    for (int i = 1; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            reach = fmax(reach, fabs(pow2_scale(vertex_at(v, idx, i)[k], -e) - pow2_scale(p0[k], -e)));
+    int s = reach > 0.0 ? -pow2_exponent(reach) : 0;
+    s = s > 0 && s <= XP_SHIFT_LIMIT ? s : 0; /* (only up: exact) */
     for (int k = 0; k < 3; k++) {
         xp_set(&normal[k], 0.0);
         xp_set(&sum[k], pow2_scale(p0[k], -e));
@@ -66,6 +76,8 @@ static void polygon_plane_exact(const double *v, const int32_t *idx, int n, int 
         const double *pi = vertex_at(v, idx, i);
         for (int k = 0; k < 3; k++) {
             xp_diff(&cur[k], pow2_scale(pi[k], -e), pow2_scale(p0[k], -e));
+            for (int j = 0; j < cur[k].n; j++)
+                cur[k].p[j] = pow2_scale(cur[k].p[j], s);
             xp_add_d(&sum[k], pow2_scale(pi[k], -e));
         }
         for (int k = 0; k < 3; k++) {
@@ -78,6 +90,7 @@ static void polygon_plane_exact(const double *v, const int32_t *idx, int n, int 
         for (int k = 0; k < 3; k++)
             prev[k] = cur[k];
     }
+    xp_normalize_up(normal, 3, XP_SHIFT_LIMIT);
 }
 
 /* The plane's double-double form from exact expansions (normal scaled so
@@ -233,19 +246,28 @@ static int32_t frame_winding(const ray_frame *f, const lane_ray *lr, const doubl
 void polygon_crossing_xp(const isect_ray *ray, const double *v, const int32_t *idx, int n,
                          int e, int e_dir, xp *num, xp *den)
 {
-    xp normal[3], sum[3], tmp;
+    xp normal[3], sum[3], rel[3], tmp;
     polygon_plane_exact(v, idx, n, e, normal, sum);
+    /* rel = sum - n o; it and N brought near 1 as for a triangle
+     * (planar.h, xp_normalize_up): N's scale cancels, rel's is matched on
+     * den. */
+    for (int k = 0; k < 3; k++) {
+        xp_set(&rel[k], (double)n);
+        xp_scale(&rel[k], &rel[k], -pow2_scale(ray->org[k], -e));
+        xp_add(&rel[k], &rel[k], &sum[k]);
+    }
+    xp_normalize_up(normal, 3, XP_SHIFT_LIMIT);
+    int shift_rel = xp_normalize_up(rel, 3, XP_SHIFT_LIMIT);
     xp_set(num, 0.0);
     xp_set(den, 0.0);
     for (int k = 0; k < 3; k++) {
-        xp_set(&tmp, (double)n);
-        xp_scale(&tmp, &tmp, -pow2_scale(ray->org[k], -e));
-        xp_add(&tmp, &tmp, &sum[k]);
-        xp_add_mul(num, &normal[k], &tmp);
+        xp_add_mul(num, &normal[k], &rel[k]);
         xp_scale(&tmp, &normal[k], pow2_scale(ray->dir[k], -e_dir));
         xp_scale(&tmp, &tmp, (double)n); /* n d_k rounded would not be exact */
         xp_add(den, den, &tmp);
     }
+    for (int j = 0; j < den->n; j++)
+        den->p[j] = pow2_scale(den->p[j], shift_rel);
 }
 
 /*

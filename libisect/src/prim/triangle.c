@@ -27,22 +27,25 @@ static int triangle_in_range(const double a[3], const double b[3], const double 
     return fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))) <= 0x1p200;
 }
 
-/* The exact cross product (b - a) x (c - a), scaled by one power of two. */
+/* The exact cross product (b - a) x (c - a), scaled by one power of two
+ * (the edges, then the normal, brought near 1: planar.h, xp_normalize_up). */
 static void triangle_normal_exact(const double a[3], const double b[3], const double c[3], xp n[3])
 {
     int e = pow2_exponent(fmax_nan(max_abs3(a), fmax_nan(max_abs3(b), max_abs3(c))));
-    xp e1[3], e2[3], tmp;
+    xp edges[6], *e1 = edges, *e2 = edges + 3, tmp;
     for (int k = 0; k < 3; k++) {
         double ak = pow2_scale(a[k], -e);
         xp_diff(&e1[k], pow2_scale(b[k], -e), ak);
         xp_diff(&e2[k], pow2_scale(c[k], -e), ak);
     }
+    xp_normalize_up(edges, 6, XP_SHIFT_LIMIT);
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         xp_mul(&n[k], &e1[i], &e2[j]);
         xp_mul(&tmp, &e1[j], &e2[i]);
         xp_sub(&n[k], &n[k], &tmp);
     }
+    xp_normalize_up(n, 3, XP_SHIFT_LIMIT);
 }
 
 int triangle_plane(const double a[3], const double b[3], const double c[3], double normal[3],
@@ -80,19 +83,25 @@ int triangle_plane(const double a[3], const double b[3], const double c[3], doub
 void triangle_crossing_xp(const isect_ray *ray, const double a[3], const double b[3],
                           const double c[3], int e, int e_dir, xp *num, xp *den)
 {
-    xp e1[3], e2[3], A[3], n[3], tmp;
+    xp edges[6], *e1 = edges, *e2 = edges + 3, A[3], n[3], tmp;
     for (int k = 0; k < 3; k++) {
         double ak = pow2_scale(a[k], -e);
         xp_diff(&e1[k], pow2_scale(b[k], -e), ak);
         xp_diff(&e2[k], pow2_scale(c[k], -e), ak);
         xp_diff(&A[k], ak, pow2_scale(ray->org[k], -e));
     }
+    /* Each vector brought near 1 (planar.h, xp_normalize_up): N's scale
+     * cancels in num/den, A's is matched on den, so num/den (and core/
+     * ratio.c's comparisons of two crossings) keep their value. */
+    xp_normalize_up(edges, 6, XP_SHIFT_LIMIT);
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         xp_mul(&n[k], &e1[i], &e2[j]);
         xp_mul(&tmp, &e1[j], &e2[i]);
         xp_sub(&n[k], &n[k], &tmp);
     }
+    xp_normalize_up(n, 3, XP_SHIFT_LIMIT);
+    int shift_a = xp_normalize_up(A, 3, XP_SHIFT_LIMIT);
     xp_set(num, 0.0);
     xp_set(den, 0.0);
     for (int k = 0; k < 3; k++) {
@@ -100,6 +109,8 @@ void triangle_crossing_xp(const isect_ray *ray, const double a[3], const double 
         xp_scale(&tmp, &n[k], pow2_scale(ray->dir[k], -e_dir));
         xp_add(den, den, &tmp);
     }
+    for (int j = 0; j < den->n; j++)
+        den->p[j] = pow2_scale(den->p[j], shift_a);
 }
 
 /*
