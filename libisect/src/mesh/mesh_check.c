@@ -22,29 +22,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ------------------------------------------------------ compensated sum */
-
-typedef struct sum_acc {
-    double sum, comp;
-} sum_acc;
-
-/* Neumaier's variant of Kahan summation: the rounding error of every
- * addition is collected exactly (TwoSum by magnitude) in comp. */
-static void sum_add(sum_acc *s, double x)
-{
-    double t = s->sum + x;
-    if (fabs(s->sum) >= fabs(x))
-        s->comp += (s->sum - t) + x;
-    else
-        s->comp += (x - t) + s->sum;
-    s->sum = t;
-}
-
-static double sum_value(const sum_acc *s)
-{
-    return s->sum + s->comp;
-}
-
 /* ---------------------------------------------------------- union-find */
 
 static int32_t uf_find(int32_t *parent, int32_t x)
@@ -112,7 +89,7 @@ static void mesh_measures(const isect_mesh *m, isect_mesh_report *r)
         spread = fmax(spread, fmax(hi[k] - ref[k], ref[k] - lo[k]));
     }
     int e2 = spread > 0.0 ? pow2_exponent(spread) : 0;
-    sum_acc volume = { 0.0, 0.0 }, area = { 0.0, 0.0 };
+    comp_sum volume = { 0.0, 0.0 }, area = { 0.0, 0.0 };
     for (int64_t f = 0; f < m->face_count; f++) {
         const int32_t *corner = m->idx + mesh_face_start(m, f);
         int size = mesh_face_size(m, f);
@@ -124,17 +101,17 @@ static void mesh_measures(const isect_mesh *m, isect_mesh_report *r)
             measure_point(m, corner[i + 1], e1, ref, e2, c);
             /* Tetrahedron (ref, a, b, c): a . (b x c) / 6. */
             v3_cross(bc, b, c);
-            sum_add(&volume, v3_dot(a, bc) / 6.0);
+            comp_add(&volume, v3_dot(a, bc) / 6.0);
             v3_sub(ab, b, a);
             v3_sub(ac, c, a);
             v3_cross(cross, ab, ac);
             v3_add(vector_area, vector_area, cross);
         }
-        sum_add(&area, 0.5 * v3_norm(vector_area));
+        comp_add(&area, 0.5 * v3_norm(vector_area));
     }
     int e = e1 + e2;
-    r->volume = ldexp(sum_value(&volume), 3 * e);
-    r->area = ldexp(sum_value(&area), 2 * e);
+    r->volume = ldexp(comp_value(&volume), 3 * e);
+    r->area = ldexp(comp_value(&area), 2 * e);
 }
 
 /* ------------------------------------------------------------- topology */

@@ -88,6 +88,7 @@
  * parallel-axis rule M = sum_i [M_i + (p~_i - p~) N_i^T].
  */
 #include "mesh/mesh.h"
+#include "core/scaling.h"
 #include "core/ddx.h"
 #include "core/predicates.h"
 
@@ -100,19 +101,15 @@
 #define WINDING_TINY 0x1p-1000
 #define WINDING_REFINE 0x1p-40 /* rad: refine a triangle's angle beyond this bound */
 
-/* A compensated sum (Neumaier's variant of Kahan's) and an error bound. */
+/* The angles' compensated sum (core/scaling.h) and their bounds' sum. */
 typedef struct angle_sum {
-    double sum, comp, bound;
+    comp_sum angles;
+    double   bound;
 } angle_sum;
 
 static void angle_sum_add(angle_sum *s, double x, double bound)
 {
-    double t = s->sum + x;
-    if (fabs(s->sum) >= fabs(x))
-        s->comp += (s->sum - t) + x;
-    else
-        s->comp += (x - t) + s->sum;
-    s->sum = t;
+    comp_add(&s->angles, x);
     s->bound += bound;
 }
 
@@ -256,7 +253,7 @@ static void prim_solid_angle(const isect_mesh *m, const mesh_prim *pr, const dou
 
 static double winding_of(const angle_sum *s, double *bound)
 {
-    double w = (s->sum + s->comp) / (4.0 * WINDING_PI);
+    double w = comp_value(&s->angles) / (4.0 * WINDING_PI);
     if (bound != NULL)
         *bound = s->bound / (4.0 * WINDING_PI) + 2.0 * WINDING_U * fabs(w);
     return w;
@@ -265,7 +262,7 @@ static double winding_of(const angle_sum *s, double *bound)
 double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound)
 {
     /* Faces of zero area (left out of the BVH's prims) subtend none. */
-    angle_sum s = { 0.0, 0.0, 0.0 };
+    angle_sum s = { { 0.0, 0.0 }, 0.0 };
     for (int64_t i = 0; i < m->prim_count; i++)
         prim_solid_angle(m, &m->prims[i], q, bound != NULL, &s);
     return winding_of(&s, bound);
@@ -597,7 +594,7 @@ static double winding_far_pass(const isect_mesh *m, const mesh_winding_tree *t, 
 {
     /* bound = 12 A_c r^2 / (4 pi (|Y| - r)^4), in units of w */
     const double k = 12.0 / (4.0 * WINDING_PI);
-    angle_sum s = { 0.0, 0.0, 0.0 };
+    angle_sum s = { { 0.0, 0.0 }, 0.0 };
     double far = 0.0;
     int32_t stack[BVH_STACK_SIZE];
     int sp = 0;
