@@ -170,3 +170,5 @@ clean:
 
 # Fortran module, Fortran tests, installed-examples test, ABI baseline.
 include mk/fortran.mk
+# libFuzzer harnesses (make fuzz, make fuzz-build).
+include mk/fuzz.mk
