@@ -113,7 +113,7 @@ deps:
 # deps runs first, in its own make, so the rest sees the installed tools.
 test:
 	$(MAKE) --no-print-directory deps
-	$(MAKE) --no-print-directory test-c test-fortran venv
+	$(MAKE) --no-print-directory test-c test-fortran venv fuzz-build
 	sh scripts/run_tests.sh
 
 # ---------------------------------------------------------------- bench

@@ -1,6 +1,6 @@
 # mk/fuzz.mk — libFuzzer harnesses (tests/fuzz/), built with clang and
 # AddressSanitizer + UndefinedBehaviorSanitizer. Included from the top-level
-# Makefile, whose variables (B, WARN, LIBCFLAGS, SRCS, HDRS, PYTHON, CJSON,
+# Makefile, whose variables (B, WARN, LIBCFLAGS, SRCS, HDRS, RUNNER_SRCS, CJSON,
 # CJSON_CFLAGS) it uses.
 #
 #   make fuzz-build             the harnesses, build/fuzz/fuzz_*, and their seeds
@@ -27,9 +27,9 @@ FUZZ_BINS := $(FUZZ_NAMES:%=$(FZ)/fuzz_%)
 FUZZ_OBJS := $(SRCS:libisect/src/%.c=$(FZ)/obj/%.o)
 FUZZ_LIB := $(FZ)/libisect.a
 FUZZ_COMMON := $(FZ)/common/fuzz_input.o $(FZ)/common/fuzz_checks.o
-# The corpus runner's sources, all but its main().
-FUZZ_RUNNER_SRCS := $(filter-out tests/c/corpus_runner.c,$(RUNNER_SRCS))
-FUZZ_RUNNER_OBJS := $(FUZZ_RUNNER_SRCS:tests/c/%.c=$(FZ)/runner/%.o)
+# The corpus runner's sources; its main() is renamed corpus_runner_main so
+# the harness can run whole files through it.
+FUZZ_RUNNER_OBJS := $(RUNNER_SRCS:tests/c/%.c=$(FZ)/runner/%.o)
 
 .PHONY: fuzz fuzz-build fuzz-seeds
 
@@ -47,7 +47,8 @@ $(FZ)/common/%.o: tests/fuzz/%.c $(wildcard tests/fuzz/*.h) libisect/include/ise
 
 $(FZ)/runner/%.o: tests/c/%.c $(wildcard tests/c/*.h) libisect/include/isect.h
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) $(CJSON_CFLAGS) -Itests/c -fsanitize=fuzzer-no-link -c $< -o $@
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(CJSON_CFLAGS) -Itests/c -fsanitize=fuzzer-no-link \
+	    -Dmain=corpus_runner_main -c $< -o $@
 
 $(FZ)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_COMMON) $(FUZZ_LIB)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer $< -o $@ $(FUZZ_COMMON) $(FUZZ_LIB) -lm
@@ -59,12 +60,13 @@ $(FZ)/fuzz_corpus: tests/fuzz/fuzz_corpus.c $(FUZZ_COMMON) $(FUZZ_RUNNER_OBJS) $
 # Seeds: a few small inputs per harness, decoded from the golden cases.
 $(FZ)/seeds/.stamp: tests/fuzz/make_seeds.py $(wildcard tests/cases/*.json)
 	rm -rf $(FZ)/seeds
-	$(PYTHON) tests/fuzz/make_seeds.py tests/cases $(FZ)/seeds
+	python3 tests/fuzz/make_seeds.py tests/cases $(FZ)/seeds
 	touch $@
 fuzz-seeds: $(FZ)/seeds/.stamp
 
 fuzz-build: $(FUZZ_BINS) $(FZ)/seeds/.stamp
 
+# Every harness runs even after one fails; make fails at the end.
 fuzz: fuzz-build
-	@for h in $(FUZZ_NAMES); do \
-	    sh scripts/run_fuzz.sh $(FZ) $$h $(FUZZ_SECONDS) || exit 1; done
+	@fail=0; for h in $(FUZZ_NAMES); do \
+	    sh scripts/run_fuzz.sh $(FZ) $$h $(FUZZ_SECONDS) || fail=1; done; exit $$fail
