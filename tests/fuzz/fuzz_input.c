@@ -3,6 +3,8 @@
  */
 #include "fuzz_input.h"
 
+#include "fuzz_checks.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -213,6 +215,25 @@ void fuzz_shape_free(fuzz_shape *s)
 {
     free(s->data);
     s->data = NULL;
+}
+
+int fuzz_faces_wide(const fuzz_shape *s, const isect_ray *rays, int n)
+{
+    fuzz_range r;
+    int i;
+    if (s->desc.type != ISECT_TRIANGLE && s->desc.type != ISECT_POLYGON &&
+        s->desc.type != ISECT_MESH)
+        return 0;
+    fuzz_range_init(&r);
+    if (s->data != NULL)
+        fuzz_range_add(&r, s->data, fuzz_shape_data_count(s->desc.type, s->desc.n));
+    if (s->desc.xform != NULL)
+        fuzz_range_add(&r, s->xform.m, 16);
+    for (i = 0; i < n; i++) {
+        fuzz_range_add(&r, rays[i].org, 3);
+        fuzz_range_add(&r, rays[i].dir, 3);
+    }
+    return fuzz_range_wide(&r);
 }
 
 isect_opts *fuzz_take_opts(fuzz_input *in, uint32_t *effective_flags)

@@ -175,8 +175,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     shape.mesh = mesh;
     opts = fuzz_take_opts(&in, &flags);
     nrays = 1 + fuzz_u8(&in) % MAX_RAYS;
-    for (i = 0; i < nrays; i++) {
+    for (i = 0; i < nrays; i++)
         fuzz_take_ray(&in, &rays[i]);
+    {
+        fuzz_range range;
+        fuzz_range_init(&range);
+        fuzz_range_add(&range, verts, (size_t)(3 * nv));
+        for (i = 0; i < nrays; i++) {
+            fuzz_range_add(&range, rays[i].org, 3);
+            fuzz_range_add(&range, rays[i].dir, 3);
+        }
+        fuzz_set_wide_range(fuzz_range_wide(&range));
+    }
+    for (i = 0; i < nrays; i++) {
         fuzz_check_intersect(&shape, &rays[i], opts, flags, nf, NULL, HIT_CAP);
         memcpy(&points[3 * i], rays[i].org, sizeof rays[i].org);
     }
