@@ -217,13 +217,10 @@ void fuzz_shape_free(fuzz_shape *s)
     s->data = NULL;
 }
 
-int fuzz_faces_wide(const fuzz_shape *s, const isect_ray *rays, int n)
+int fuzz_shape_wide(const fuzz_shape *s, const isect_ray *rays, int n)
 {
     fuzz_range r;
     int i;
-    if (s->desc.type != ISECT_TRIANGLE && s->desc.type != ISECT_POLYGON &&
-        s->desc.type != ISECT_MESH)
-        return 0;
     fuzz_range_init(&r);
     if (s->data != NULL)
         fuzz_range_add(&r, s->data, fuzz_shape_data_count(s->desc.type, s->desc.n));

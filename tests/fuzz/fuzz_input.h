@@ -60,10 +60,9 @@ typedef struct fuzz_shape {
 void fuzz_take_shape(fuzz_input *in, fuzz_shape *s, const isect_mesh *mesh);
 void fuzz_shape_free(fuzz_shape *s);
 
-/* 1 when s is a face type (triangle, polygon, mesh) and its numbers, its
- * transform and the rays span more than 2^FUZZ_MAX_SPREAD (fuzz_checks.h:
- * the face kernels' open defects at such ranges). */
-int fuzz_faces_wide(const fuzz_shape *s, const isect_ray *rays, int n);
+/* 1 when the shape's numbers, its transform and the rays span more than
+ * 2^FUZZ_MAX_SPREAD (fuzz_checks.h: the open defects at such ranges). */
+int fuzz_shape_wide(const fuzz_shape *s, const isect_ray *rays, int n);
 
 /* Options: NULL, or an isect_opts of a fuzzed size in a heap block of
  * exactly the bytes that size covers (at least the size field, at most the

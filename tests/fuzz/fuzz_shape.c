@@ -62,7 +62,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     nextra = fuzz_u8(&in) % 5;
 
     nprim = s.desc.type == ISECT_MESH ? 4 : s.desc.n;
-    fuzz_set_wide_range(fuzz_faces_wide(&s, rays, nrays));
+    fuzz_set_wide_range(fuzz_shape_wide(&s, rays, nrays));
     for (i = 0; i < nrays; i++)
         fuzz_check_intersect(&s.desc, &rays[i], opts, flags, nprim, NULL, HIT_CAP);
     fuzz_check_batches(&s.desc, rays, nrays, opts);
