@@ -354,6 +354,24 @@ static void test_sphere_tiny_radius(void)
     CHECK_EQ_INT(isect_contains(&s, V3(0x1p-599, 0, 0)), 0);
 }
 
+/* eps >= 1 declares a line through the centre tangent (|G| = r^2 D <=
+ * eps r^2 D; found by tests/fuzz/fuzz_shape): one TOUCH at the foot of the
+ * perpendicular, the centre, t = 5 for the unit sphere seen from (0, 0, -5)
+ * along +z; its normal was 0 (the foot has no direction) and is -unit(dir),
+ * the ellipsoid's choice there, at any scale of the direction. */
+static void test_sphere_touch_through_centre(void)
+{
+    isect_hit h[4];
+    isect_opts o = opts_eps(2.0);
+    isect_ray r = ray_make(0, 0, -5, 0, 0, 1);
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, 1.0, &o, h, 4), 1);
+    hit_check(__LINE__, &h[0], 5.0, origin, V3(0, 0, -1), -1, ISECT_TOUCH, TOL);
+    r = ray_make(0, 0, -5, 0, 0, 0x1p-600);
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, 1.0, &o, h, 4), 1);
+    CHECK_EQ_INT(h[0].kind, ISECT_TOUCH);
+    CHECK(h[0].normal[0] == 0.0 && h[0].normal[1] == 0.0 && h[0].normal[2] == -1.0);
+}
+
 static void test_sphere_degenerate_and_bad(void)
 {
     isect_hit h[4];
@@ -1093,6 +1111,7 @@ int main(void)
     test_sphere_direction_scale();
     test_sphere_far_small();
     test_sphere_tiny_radius();
+    test_sphere_touch_through_centre();
     test_sphere_degenerate_and_bad();
     test_sphere_contains();
     test_ellipsoid();

@@ -231,6 +231,15 @@ static int sphere_exact(const isect_shape *s, const isect_ray *ray, const isect_
              * small coordinates) or o + t d, and the normal l/|l| (|l| = r
              * only to ~eps/2, so divided by its length, then renormalised). */
             unit3(hit->normal, l);
+            if (l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0) {
+                /* A line through the centre declared tangent (eps >= 1
+                 * lets |G| = r^2 D pass; found by tests/fuzz/fuzz_shape)
+                 * has no foot direction: the normal is -unit(dir), the
+                 * ellipsoid's choice there and the quadric's at a zero
+                 * gradient, instead of 0. */
+                double back[3] = { -d_s[0], -d_s[1], -d_s[2] };
+                unit3(hit->normal, back);
+            }
             lane_unit_newton(hit->normal);
             int snap = sp.snap_scale < max_abs3(o_s) + fabs(hit->t) * max_abs3(d_s);
             for (int k = 0; k < 3; k++)
