@@ -27,7 +27,7 @@
  * Meshes whose check reports zero-area faces are only held to the last two
  * points until issue 13 item 1 (exactly-once with zero-area faces) lands in
  * libisect/src/mesh/; build with -DFUZZ_PARITY_WITH_DEGENERATE to hold them
- * to all of them. Problems spanning more than 2^600 skip the exactness
+ * to all of them. Problems spanning more than 2^400 skip the exactness
  * checks (fuzz_checks.h, FUZZ_MAX_SPREAD; -DFUZZ_ANY_RANGE).
  */
 #include "fuzz_checks.h"
