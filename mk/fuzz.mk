@@ -6,6 +6,7 @@
 #   make fuzz-build             the harnesses, build/fuzz/fuzz_*, and their seeds
 #   make fuzz FUZZ_SECONDS=N    run each harness for N seconds (default 60)
 #   make fuzz-seeds             write the seed corpora from tests/cases/*.json
+#   make fuzz-build FUZZ_DEFS=-DFUZZ_ANY_RANGE   also the held-back checks
 #
 # The library is compiled a third time with the fuzzer's coverage
 # instrumentation (-fsanitize=fuzzer-no-link), so the fuzzer is guided by the
@@ -21,7 +22,11 @@ FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 # The harnesses follow the library's C rules (-std=c99 ... -Werror) and its
 # floating-point rule (no contraction: they recompute dot products that must
 # round as the library's do).
-FUZZ_CFLAGS := $(WARN) -O1 -ffp-contract=off $(FUZZ_SAN) -Ilibisect/include -Itests/fuzz
+# FUZZ_DEFS: -DFUZZ_ANY_RANGE, -DFUZZ_PARITY_WITH_DEGENERATE, -DFUZZ_MEASURES_ANY_SCALE
+# turn on the checks held back for open defects (README, "Reliability"); a
+# clean rebuild of build/fuzz is needed after changing them.
+FUZZ_DEFS ?=
+FUZZ_CFLAGS := $(WARN) -O1 -ffp-contract=off $(FUZZ_SAN) -Ilibisect/include -Itests/fuzz $(FUZZ_DEFS)
 FUZZ_NAMES := shape spawn mesh mesh_parity polygon2 corpus
 FUZZ_BINS := $(FUZZ_NAMES:%=$(FZ)/fuzz_%)
 FUZZ_OBJS := $(SRCS:libisect/src/%.c=$(FZ)/obj/%.o)
