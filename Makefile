@@ -113,7 +113,7 @@ deps:
 # deps runs first, in its own make, so the rest sees the installed tools.
 test:
 	$(MAKE) --no-print-directory deps
-	$(MAKE) --no-print-directory test-c test-fortran venv
+	$(MAKE) --no-print-directory test-c test-fortran venv fuzz-build
 	sh scripts/run_tests.sh
 
 # ---------------------------------------------------------------- bench
@@ -170,6 +170,8 @@ clean:
 
 # Fortran module, Fortran tests, installed-examples test, ABI baseline.
 include mk/fortran.mk
+# libFuzzer harnesses (make fuzz, make fuzz-build).
+include mk/fuzz.mk
 
 # ThreadSanitizer build of the library and the thread test.
 include mk/tsan.mk

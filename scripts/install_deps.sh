@@ -6,7 +6,8 @@
 set -euo pipefail
 packages=(build-essential clang meson ninja-build pkg-config libcjson-dev
           python3 python3-venv binutils gfortran abigail-tools
-          libembree-dev)
+          libembree-dev
+          libclang-rt-14-dev)  # the libFuzzer runtime of clang 14 (make fuzz)
 need=()
 for pkg in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' \

@@ -86,6 +86,13 @@ if [ -x $B/tests/corpus_runner ]; then
     step "golden corpus (C)" $B/tests/corpus_runner tests/cases/*.json
     step "golden corpus (C) [asan+ubsan]" $B/san/tests/corpus_runner tests/cases/*.json
 fi
+# libFuzzer harnesses (tests/fuzz/, ASan+UBSan, invariants asserted), 60 s
+# each: every shape query, spawned rays, mesh arrays, exactly-once parity on
+# fuzzed closed meshes, the 2D polygon helpers, the corpus reader.
+for h in shape spawn mesh mesh_parity polygon2 corpus; do
+    [ -x $B/fuzz/fuzz_$h ] && step "fuzz_$h 60 s [libFuzzer asan+ubsan]" \
+        sh scripts/run_fuzz.sh $B/fuzz $h 60
+done
 step "fortran layout and constants" $B/fortran/test_layout libisect/include/isect.h
 step "fortran module forms" $B/fortran/test_forms
 step "golden corpus (Fortran)" $B/fortran/corpus_runner tests/cases/flat/*.txt

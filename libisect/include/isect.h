@@ -295,7 +295,8 @@ ISECT_API int isect_ray_plane(const isect_ray *ray, const double n[3], double d,
  * from c to the line) are formed in twice the working precision; the root
  * farther from 0 is t_m + sign(t_m) w (w the half chord), the nearer one
  * (|f|^2 - r^2)/|d|^2 divided by it when cancellation would threaten.
- * TOUCH when |r^2 - h^2| <= eps*r^2: one hit at t_m. Points are snapped to
+ * TOUCH when |r^2 - h^2| <= eps*r^2: one hit at t_m (with eps >= 1 a line
+ * through c qualifies: its normal is then -unit(dir)). Points are snapped to
  * c + r*normal when that is more accurate than org + t*dir. prim -1. */
 ISECT_API int isect_ray_sphere(const isect_ray *ray, const double c[3], double r,
                                const isect_opts *opts, isect_hit *hits, int cap);

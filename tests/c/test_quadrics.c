@@ -13,6 +13,7 @@
 
 #include <isect.h>
 
+#include <float.h>
 #include <string.h>
 
 #define TOL 1e-12
@@ -305,6 +306,70 @@ static void test_sphere_far_small(void)
     double z_hit = -1.0 / (far + sqrt(far * far - 1.0));
     CHECK(fabs(h[0].point[2] - z_hit) <= 1e-15);
     CHECK_NEAR(h[0].t, 1.0 - z_hit, 1e-15);
+}
+
+/* A sphere whose radius is more than 2^450 below the distances (found by
+ * tests/fuzz/fuzz_shape): r^2 underflowed in the exact path, so a ray
+ * through the centre was one TOUCH with a zero normal. Centre at the origin,
+ * radius 2^-600, the line from -8.75 (1, 1, 1) along -8.75 (1, 1, 1): it
+ * passes through the centre at t = -1 and crosses the sphere at
+ * t = -1 -+ 2^-600 / (8.75 sqrt 3), both rounding to -1; the crossings are
+ * at -+ 2^-600 (1, 1, 1)/sqrt 3, normals -+ (1, 1, 1)/sqrt 3 (the direction
+ * is -(1, 1, 1), so the entry is on the +(1, 1, 1) side). */
+static void test_sphere_tiny_radius(void)
+{
+    const double r_tiny = 0x1p-600, s3 = 1.0 / sqrt(3.0);
+    const double bounds[4][2] = { { -INFINITY, INFINITY }, { -1e300, 1e300 },
+                                  { -DBL_MAX, DBL_MAX }, { -2.0, -0.999999 } };
+    isect_hit h[4];
+    for (int i = 0; i < 4; i++) {
+        isect_ray r = line_make(-8.75, -8.75, -8.75, -8.75, -8.75, -8.75);
+        r.tmin = bounds[i][0];
+        r.tmax = bounds[i][1];
+        CHECK_EQ_INT(isect_ray_sphere(&r, origin, r_tiny, NULL, h, 4), 2);
+        hit_check(__LINE__, &h[0], -1.0, V3(r_tiny * s3, r_tiny * s3, r_tiny * s3),
+                  V3(s3, s3, s3), -1, ISECT_ENTER, TOL);
+        hit_check(__LINE__, &h[1], -1.0, V3(-r_tiny * s3, -r_tiny * s3, -r_tiny * s3),
+                  V3(-s3, -s3, -s3), -1, ISECT_EXIT, TOL);
+    }
+    /* Intervals that end between or before the crossings (t = -1 is
+     * neither of them). */
+    isect_ray r = line_make(-8.75, -8.75, -8.75, -8.75, -8.75, -8.75);
+    r.tmax = -1.0;
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, r_tiny, NULL, h, 4), 1);
+    CHECK_EQ_INT(h[0].kind, ISECT_ENTER);
+    r.tmin = -1.0;
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, r_tiny, NULL, h, 4), 0);
+    r.tmin = -0.5;
+    r.tmax = INFINITY;
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, r_tiny, NULL, h, 4), 0);
+    /* The smallest normal radius scale the fuzzer used, 2^-1007. */
+    r = line_make(-8.75, -8.75, -8.75, -8.75, -8.75, -8.75);
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, 0x1.004p-1007, NULL, h, 4), 2);
+    CHECK_EQ_INT(h[0].kind, ISECT_ENTER);
+    CHECK_NEAR(h[0].normal[0], s3, TOL);
+    /* Containment at that scale: r/2 inside, 2r outside. */
+    isect_shape s = { ISECT_SPHERE, 0, 0, 0, (const double[]){ 0, 0, 0, 0x1p-600 }, NULL, NULL };
+    CHECK_EQ_INT(isect_contains(&s, V3(0x1p-601, 0, 0)), 1);
+    CHECK_EQ_INT(isect_contains(&s, V3(0x1p-599, 0, 0)), 0);
+}
+
+/* eps >= 1 declares a line through the centre tangent (|G| = r^2 D <=
+ * eps r^2 D; found by tests/fuzz/fuzz_shape): one TOUCH at the foot of the
+ * perpendicular, the centre, t = 5 for the unit sphere seen from (0, 0, -5)
+ * along +z; its normal was 0 (the foot has no direction) and is -unit(dir),
+ * the ellipsoid's choice there, at any scale of the direction. */
+static void test_sphere_touch_through_centre(void)
+{
+    isect_hit h[4];
+    isect_opts o = opts_eps(2.0);
+    isect_ray r = ray_make(0, 0, -5, 0, 0, 1);
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, 1.0, &o, h, 4), 1);
+    hit_check(__LINE__, &h[0], 5.0, origin, V3(0, 0, -1), -1, ISECT_TOUCH, TOL);
+    r = ray_make(0, 0, -5, 0, 0, 0x1p-600);
+    CHECK_EQ_INT(isect_ray_sphere(&r, origin, 1.0, &o, h, 4), 1);
+    CHECK_EQ_INT(h[0].kind, ISECT_TOUCH);
+    CHECK(h[0].normal[0] == 0.0 && h[0].normal[1] == 0.0 && h[0].normal[2] == -1.0);
 }
 
 static void test_sphere_degenerate_and_bad(void)
@@ -1045,6 +1110,8 @@ int main(void)
     test_sphere_tangency();
     test_sphere_direction_scale();
     test_sphere_far_small();
+    test_sphere_tiny_radius();
+    test_sphere_touch_through_centre();
     test_sphere_degenerate_and_bad();
     test_sphere_contains();
     test_ellipsoid();

@@ -34,6 +34,24 @@ int sphere_check(const isect_shape *s)
 }
 
 /*
+ * The exponent the exact computations scale positions by: e puts the
+ * largest of r and the positions just below 1, which keeps every square
+ * below 2^4. A radius more than 2^450 below the positions would then have
+ * r^2 (and eps r^2 D) underflow to 0 while |f|^2 does not, so a ray through
+ * the centre of a sphere of radius 2^-600 seen from 1 away was decided as a
+ * tangency (one TOUCH with a zero normal). Such a radius scales the whole
+ * problem up by up to 2^500 instead, keeping r above 2^-450 where it can:
+ * positions stay below 2^501 and squares of sums of them below 2^1010.
+ */
+static int sphere_scale_exponent(double r, int e)
+{
+    int er = pow2_exponent(r) - e; /* the exponent of the scaled radius */
+    if (r > 0.0 && er < -450)
+        e -= (-450 - er) < 500 ? (-450 - er) : 500;
+    return e;
+}
+
+/*
  * The exact path, for the rays the fast kernel (sphere_lanes.h) cannot
  * certify. The same formulas, with D, B, C and G = B^2 - D C formed as
  * exact expansions (expansion.h) after scaling positions and the direction
@@ -59,7 +77,8 @@ static int sphere_exact(const isect_shape *s, const isect_ray *ray, const isect_
     double eps = prm->eps;
     const double *c = data;
     double r = data[3];
-    int e = pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c))));
+    int e = sphere_scale_exponent(
+        r, pow2_exponent(fmax_nan(r, fmax_nan(max_abs3(ray->org), max_abs3(c)))));
     int e_dir = pow2_exponent(max_abs3(ray->dir));
     int t_shift = e - e_dir;
     double scaled[4], o_s[3], d_s[3];
@@ -114,7 +133,11 @@ static int sphere_exact(const isect_shape *s, const isect_ray *ray, const isect_
             lo_ok[side] = hi_ok[side] = mid_ok[side] = all;
             continue;
         }
-        double tau_s = pow2_scale(tau, -t_shift);
+        /* Every root and the midpoint lie within 2^508 in the scaled units
+         * (positions below 2^501, the direction's largest component in
+         * [1/2, 1)), so a bound beyond 2^510 decides as 2^510 does, and
+         * D tau^2 cannot overflow. */
+        double tau_s = fmax(-0x1p510, fmin(0x1p510, pow2_scale(tau, -t_shift)));
         xp q_tau, m_tau; /* Q(tau), B + D tau */
         xp_scale(&m_tau, &dd, tau_s);
         xp_add(&m_tau, &m_tau, &b);
@@ -208,6 +231,15 @@ static int sphere_exact(const isect_shape *s, const isect_ray *ray, const isect_
              * small coordinates) or o + t d, and the normal l/|l| (|l| = r
              * only to ~eps/2, so divided by its length, then renormalised). */
             unit3(hit->normal, l);
+            if (l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0) {
+                /* A line through the centre declared tangent (eps >= 1
+                 * lets |G| = r^2 D pass; found by tests/fuzz/fuzz_shape)
+                 * has no foot direction: the normal is -unit(dir), the
+                 * ellipsoid's choice there and the quadric's at a zero
+                 * gradient, instead of 0. */
+                double back[3] = { -d_s[0], -d_s[1], -d_s[2] };
+                unit3(hit->normal, back);
+            }
             lane_unit_newton(hit->normal);
             int snap = sp.snap_scale < max_abs3(o_s) + fabs(hit->t) * max_abs3(d_s);
             for (int k = 0; k < 3; k++)
@@ -253,7 +285,8 @@ int sphere_hits(const isect_shape *s, const isect_ray *ray, const isect_params *
  * parts, every product exact). */
 int sphere_side(const double *data, const double p[3])
 {
-    int e = pow2_exponent(fmax_nan(data[3], fmax_nan(max_abs3(p), max_abs3(data))));
+    int e = sphere_scale_exponent(
+        data[3], pow2_exponent(fmax_nan(data[3], fmax_nan(max_abs3(p), max_abs3(data)))));
     xp sum, tmp, f;
     xp_set(&sum, 0.0);
     for (int k = 0; k < 3; k++) {
