@@ -24,10 +24,8 @@
  *    the hit's normal (isect_contains of its origin) and never meets the
  *    face it leaves again;
  *  - every query invariant of fuzz_checks.h.
- * Meshes whose check reports zero-area faces are only held to the last two
- * points until issue 13 item 1 (exactly-once with zero-area faces) lands in
- * libisect/src/mesh/; build with -DFUZZ_PARITY_WITH_DEGENERATE to hold them
- * to all of them. Problems spanning more than 2^400 skip the exactness
+ * Meshes with zero-area faces are held to all of them (issue 13 item 1,
+ * exactly-once with degenerate faces). Problems spanning more than 2^400 skip the exactness
  * checks (fuzz_checks.h, FUZZ_MAX_SPREAD; -DFUZZ_ANY_RANGE).
  */
 #include "fuzz_checks.h"
@@ -238,7 +236,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     isect_mesh_report rep;
     isect_shape shape;
     isect_ray rays[MAX_RAYS];
-    int scale, nrays, i, k, st, strict, wide;
+    int scale, nrays, i, k, st, wide;
     fuzz_range range;
 
     fuzz_input_init(&in, data, size);
@@ -253,11 +251,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     memset(&rep, 0, sizeof rep);
     check_topology(mesh, t, &rep);
-#ifdef FUZZ_PARITY_WITH_DEGENERATE
-    strict = 1;
-#else
-    strict = rep.degenerate_faces == 0;
-#endif
     if (getenv("FUZZ_VERBOSE") != NULL) {
         fprintf(stderr, "topology nv %d nf %d, degenerate faces %lld\n", t->nv, t->nf,
                 (long long)rep.degenerate_faces);
@@ -293,7 +286,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     rays[i].dir[2], wide);
         if (!fuzz_ray_valid(&rays[i]))
             continue;
-        if (strict && !wide && t_fits(verts, t->nv, &rays[i])) {
+        if (!wide && t_fits(verts, t->nv, &rays[i])) {
             check_whole_line(&shape, &rays[i], t->nf);
             check_parity(&shape, &rays[i], t->nf, verts, t);
         }
