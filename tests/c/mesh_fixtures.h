@@ -271,6 +271,22 @@ static FX_MAYBE_UNUSED fx_mesh fx_voxels(int nx, int ny, int nz, const char *occ
     return m;
 }
 
+/* r (row-major 3x3): the rotation by `angle` radians about the unit
+ * vector `axis` (Rodrigues' formula). */
+static FX_MAYBE_UNUSED void fx_rotation(const double axis[3], double angle, double r[9])
+{
+    double c = cos(angle), s = sin(angle);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double cross = 0.0;
+            if (i != j) {
+                int k = 3 - i - j;
+                cross = ((i + 1) % 3 == j ? -1.0 : 1.0) * axis[k];
+            }
+            r[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * axis[i] * axis[j] + s * cross;
+        }
+}
+
 /* The unit cube [0,1]^3 as six quads (split: twelve triangles). */
 static FX_MAYBE_UNUSED fx_mesh fx_cube(int split)
 {

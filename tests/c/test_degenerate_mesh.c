@@ -384,16 +384,7 @@ static void rotation(double r[9])
 {
     double axis[3], ang = 3.0 * rng_unit();
     rng_dir(axis);
-    double c = cos(ang), s = sin(ang);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double cross = 0.0;
-            if (i != j) {
-                int k = 3 - i - j;
-                cross = ((i + 1) % 3 == j ? -1.0 : 1.0) * axis[k];
-            }
-            r[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * axis[i] * axis[j] + s * cross;
-        }
+    fx_rotation(axis, ang, r);
 }
 
 static void gm_map(gmesh *g, const double r[9], double scale, const double shift[3])

@@ -267,19 +267,10 @@ int main(int argc, char **argv)
     /* A rotation with no exactly representable structure (about (1,2,3)). */
     double rot[9];
     {
-        double axis[3] = { 1.0, 2.0, 3.0 }, len = sqrt(14.0), a = 0.61;
+        double axis[3] = { 1.0, 2.0, 3.0 }, len = sqrt(14.0);
         for (int k = 0; k < 3; k++)
             axis[k] /= len;
-        double c = cos(a), s = sin(a);
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-                double cross = 0.0;
-                if (i != j) {
-                    int k = 3 - i - j;
-                    cross = ((i + 1) % 3 == j ? -1.0 : 1.0) * axis[k];
-                }
-                rot[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * axis[i] * axis[j] + s * cross;
-            }
+        fx_rotation(axis, 0.61, rot);
     }
     const double ball_c[3] = { 0.25, -0.125, 0.5 };
     enum { CASES = 9 };
