@@ -276,8 +276,33 @@ static void test_slab(const isect_shape *s, double thickness, const char *name)
     CHECK(missed == 0);
 }
 
+/* A direction whose dot product with the normal underflows (fuzz_spawn's
+ * find): the unit-size normal of a subnormal triangle has a y component of
+ * -2^-19 and the new direction is (0, 127 2^-1074, 0), so dir.normal is
+ * negative but rounds to -0. The ray must leave behind the face (where it
+ * points), so it never meets the face again; a plain dot product took -0
+ * for "tangent" and put the origin in front, and the ray met the face at
+ * t ~ 1684. */
+static void test_underflowing_side(void)
+{
+    static const double tri[9] = { 0x0p+0, 0x0p+0, 0x0.000000000003fp-1022,
+                                   0x0.02ep-1022, 0x0p+0, 0x0.000000026p-1022,
+                                   0x0.0000000003ffp-1022, 0x0.00000ffffc01p-1022,
+                                   0x0.0000000003ff4p-1022 };
+    isect_shape s = { ISECT_TRIANGLE, 0, 0, 0, tri, NULL, NULL };
+    isect_ray r = { { 0x0.0000000003ff8p-1022, 0x0.000000000bffp-1022, 0x0.000000000bffp-1022 },
+                    { -0x1p-8, -0x1p-8, -0x1.94p+6 }, 0.0, INFINITY };
+    isect_hit h, again[2];
+    CHECK(isect_intersect(&s, &r, NULL, &h, 1) == 1);
+    const double dir[3] = { 0.0, 127 * 0x1p-1074, 0.0 };
+    isect_ray out;
+    CHECK(isect_spawn_ray(&s, &h, dir, &out) == ISECT_OK);
+    CHECK(isect_intersect(&s, &out, NULL, again, 2) == 0);
+}
+
 int main(int argc, char **argv)
 {
+    test_underflowing_side();
     int64_t per_shape = argc > 1 ? atoll(argv[1]) : 100000;
     enum { COUNT = 17 };
     static spawn_shape shapes[COUNT];

@@ -15,6 +15,7 @@
  * more than a few ulps away is never skipped.
  */
 #include "api/dispatch.h"
+#include "core/dyadic_sum.h"
 
 #include "core/vec3.h"
 
@@ -53,7 +54,14 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
 
     /* The side dir points into: in front of the normal (outside a solid),
      * or behind it; a direction along the tangent plane leaves in front. */
-    int want = v3_dot(dir, hit->normal) >= 0.0 ? 1 : -1;
+    /* dir.normal's exact sign: a plain dot product of tiny components can
+     * underflow to -0 or +0 and pick the wrong side (a subnormal direction
+     * beside a normal of unit size) */
+    dyadic_sum dot;
+    dyadic_init(&dot);
+    for (int k = 0; k < 3; k++)
+        dyadic_add3(&dot, 1.0, dir[k], hit->normal[k], 1.0);
+    int want = dyadic_sign(&dot) >= 0 ? 1 : -1;
     int closed_solid = shape->type == ISECT_MESH && shape_is_solid(f, shape);
     /* a closed mesh's containment by crossing parity, whatever rule the
      * descriptor carries: exact, and what the side test must agree with */
