@@ -17,7 +17,10 @@ log=$fz/logs/$name.log
 mkdir -p "$fz/corpus/$name" "$fz/seeds/$name" "$fz/artifacts" "$fz/logs"
 # -timeout: an input that takes 20 s is a hang; -rss_limit_mb: a leak or a
 # runaway allocation; -max_len: the seeds are below 3 KB.
+# FUZZ_SEED (make test: 1) fixes libFuzzer's mutation sequence, so a run
+# explores the same inputs wherever it runs (0: a random seed).
 "$bin" "$fz/corpus/$name" "$fz/seeds/$name" -max_total_time="$seconds" -timeout=20 \
+    -seed="${FUZZ_SEED:-0}" \
     -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$fz/artifacts/$name-" \
     -print_final_stats=1 >"$log" 2>&1
 rc=$?

@@ -91,7 +91,7 @@ fi
 # fuzzed closed meshes, the 2D polygon helpers, the corpus reader.
 for h in shape spawn mesh mesh_parity polygon2 corpus; do
     [ -x $B/fuzz/fuzz_$h ] && step "fuzz_$h 60 s [libFuzzer asan+ubsan]" \
-        sh scripts/run_fuzz.sh $B/fuzz $h 60
+        env FUZZ_SEED=1 sh scripts/run_fuzz.sh $B/fuzz $h 60
 done
 step "fortran layout and constants" $B/fortran/test_layout libisect/include/isect.h
 step "fortran module forms" $B/fortran/test_forms
