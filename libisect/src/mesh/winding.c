@@ -290,8 +290,7 @@ typedef struct boundary_edge {
 
 struct mesh_winding_tree {
     winding_cluster *clusters; /* [node_count][BVH_WIDTH] */
-    boundary_edge   *edges;
-    int64_t          edge_used, edge_cap;
+    boundary_edge   *edges;    /* every cluster's boundary, by edge_first */
 };
 
 /* Fan triangle A, B, C as a one-face cluster about the origin's frame:
@@ -531,8 +530,6 @@ int mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out)
     }
     free(scratch.e);
     t->edges = all.e;
-    t->edge_used = all.used;
-    t->edge_cap = all.cap;
     *out = t;
     return ISECT_OK;
 }
