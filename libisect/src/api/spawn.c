@@ -54,14 +54,26 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
 
     /* The side dir points into: in front of the normal (outside a solid),
      * or behind it; a direction along the tangent plane leaves in front. */
-    /* dir.normal's exact sign: a plain dot product of tiny components can
-     * underflow to -0 or +0 and pick the wrong side (a subnormal direction
-     * beside a normal of unit size) */
-    dyadic_sum dot;
-    dyadic_init(&dot);
-    for (int k = 0; k < 3; k++)
-        dyadic_add3(&dot, 1.0, dir[k], hit->normal[k], 1.0);
-    int want = dyadic_sign(&dot) >= 0 ? 1 : -1;
+    /* dir.normal's exact sign: the plain dot product where it clears its
+     * bound (3u sum|terms|, plus 2^-1000 for underflowed products), else
+     * exactly — a plain dot product of tiny components can underflow to
+     * -0 or +0 and pick the wrong side (a subnormal direction beside a
+     * normal of unit size) */
+    double dot_plain = v3_dot(dir, hit->normal);
+    double dot_bound = 0x1p-51 * (fabs(dir[0] * hit->normal[0]) + fabs(dir[1] * hit->normal[1])
+                                  + fabs(dir[2] * hit->normal[2]))
+                     + 0x1p-1000;
+    int dot_sign;
+    if (fabs(dot_plain) > dot_bound) {
+        dot_sign = dot_plain > 0.0 ? 1 : -1;
+    } else {
+        dyadic_sum dot;
+        dyadic_init(&dot);
+        for (int k = 0; k < 3; k++)
+            dyadic_add3(&dot, 1.0, dir[k], hit->normal[k], 1.0);
+        dot_sign = dyadic_sign(&dot);
+    }
+    int want = dot_sign >= 0 ? 1 : -1;
     int closed_solid = shape->type == ISECT_MESH && shape_is_solid(f, shape);
     /* a closed mesh's containment by crossing parity, whatever rule the
      * descriptor carries: exact, and what the side test must agree with */
