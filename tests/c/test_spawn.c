@@ -300,9 +300,41 @@ static void test_underflowing_side(void)
     CHECK(isect_intersect(&s, &out, NULL, again, 2) == 0);
 }
 
+/* A direction within the normal's rounding of the plane (fuzz_spawn's
+ * find): the triangle below lies in a plane whose exact normal is ~2^-56
+ * off (0, -1, 1)/sqrt(2), but its unit normal rounds to exactly (0, -h, h),
+ * perpendicular to the new direction (-1/4, -2^-8, -2^-8) in doubles. Taken
+ * for "tangent", the origin went in front and the ray, sinking through the
+ * plane at a slope of ~2^-64, met the face again at t ~ 1300. The exact
+ * plane decides: the ray leaves behind it, and never meets the face. The
+ * same through a transform (a scaling by 2: the object-space direction is
+ * exact). */
+static void test_nearly_tangent_flat(void)
+{
+    static const double tri[9] = { 0x1.6403a7100302bp-95, 0x1p-52, -0x1p-64,
+                                   -0x1.57a020205p+83, -14.75, -14.75,
+                                   -14.75, -14.75, -14.75 };
+    static const double scale2[16] = { 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1 };
+    isect_xform x;
+    CHECK(isect_xform_init(&x, scale2) == ISECT_OK);
+    for (int transformed = 0; transformed < 2; transformed++) {
+        isect_shape s = { ISECT_TRIANGLE, 0, 0, 0, tri, NULL, transformed ? &x : NULL };
+        double k = transformed ? 2.0 : 1.0;
+        isect_ray r = { { -0.25 * k, -1.0 * k, 1.0 * k }, { 0, 1, -1 }, 0.0, INFINITY };
+        isect_hit h, again[2];
+        CHECK(isect_intersect(&s, &r, NULL, &h, 1) == 1);
+        const double dir[3] = { -0.25, -0x1p-8, -0x1p-8 };
+        CHECK(h.normal[0] == 0.0 && h.normal[1] == -h.normal[2]); /* dir.normal == 0 */
+        isect_ray out;
+        CHECK(isect_spawn_ray(&s, &h, dir, &out) == ISECT_OK);
+        CHECK(isect_intersect(&s, &out, NULL, again, 2) == 0);
+    }
+}
+
 int main(int argc, char **argv)
 {
     test_underflowing_side();
+    test_nearly_tangent_flat();
     int64_t per_shape = argc > 1 ? atoll(argv[1]) : 100000;
     enum { COUNT = 17 };
     static spawn_shape shapes[COUNT];

@@ -63,6 +63,13 @@ int shape_point_inside(const shape_family *f, const isect_shape *s, const double
 int shape_point_side(const shape_family *f, const isect_shape *s, const double p[3],
                      int32_t prim);
 
+/* The exact side (prim/prim.h: X_tangent_side) of a finite world-space
+ * direction against the plane of a flat prim, in the shape's object space
+ * (the direction mapped as every query maps it): -1, 0, +1, SIDE_CURVED for
+ * a prim that is not flat, or ISECT_E_NONFINITE. */
+int shape_direction_side(const shape_family *f, const isect_shape *s, const double d[3],
+                         int32_t prim);
+
 /* 1 when prim names a part of s that a hit can have (a mesh face). */
 int shape_prim_valid(const isect_shape *s, int32_t prim);
 

@@ -44,6 +44,9 @@ struct shape_family {
     int uses_flags; /* isect_shape.flags carries a rule or ISECT_CAPPED */
     /* The exact side of an object-space point (prim/prim.h). */
     int (*side)(const isect_shape *s, const double p[3], int32_t prim);
+    /* The exact side of an object-space direction against a flat prim's
+     * plane (prim/prim.h); NULL: the family's surfaces are curved. */
+    int (*tangent_side)(const isect_shape *s, const double d[3], int32_t prim);
 };
 
 /* The two query paths of the analytic shapes, over their bounded kernel. */
@@ -96,12 +99,12 @@ static int analytic_hit_first(const shape_family *f, const isect_shape *s,
     return 1;
 }
 
-#define FAMILY(X, solidity, uses_n, uses_flags)                                 \
+#define FAMILY(X, solidity, uses_n, uses_flags, tangent)                        \
     { X##_check, X##_hits, X##_contains, analytic_hits_all, analytic_hit_first, \
-      NULL, solidity, uses_n, uses_flags, X##_side_test }
+      NULL, solidity, uses_n, uses_flags, X##_side_test, tangent }
 #define THIN_FAMILY(X, uses_n, uses_flags)                                      \
     { X##_check, X##_hits, NULL, analytic_hits_all, analytic_hit_first,         \
-      NULL, SURFACE_THIN, uses_n, uses_flags, X##_side_test }
+      NULL, SURFACE_THIN, uses_n, uses_flags, X##_side_test, X##_tangent_side }
 
 /* The mesh's queries (mesh/mesh.h) under the family table's signatures. */
 static int64_t mesh_family_hits_all(const shape_family *f, const isect_shape *s,
@@ -128,18 +131,20 @@ static int64_t mesh_family_first_batch(const shape_family *f, const isect_shape 
 /* Indexed by shape type; entry 0 is empty so a zeroed descriptor is rejected. */
 static const shape_family families[ISECT_MESH + 1] = {
     [ISECT_PLANE]        = THIN_FAMILY(plane, 0, 0),
-    [ISECT_SPHERE]       = FAMILY(sphere, SURFACE_SOLID, 0, 0),
-    [ISECT_AABB]         = FAMILY(aabb, SURFACE_SOLID, 0, 0),
+    [ISECT_SPHERE]       = FAMILY(sphere, SURFACE_SOLID, 0, 0, NULL),
+    /* a box's normals are exactly axis vectors: the hit's normal decides */
+    [ISECT_AABB]         = FAMILY(aabb, SURFACE_SOLID, 0, 0, NULL),
     [ISECT_TRIANGLE]     = THIN_FAMILY(triangle, 0, 0),
     [ISECT_POLYGON]      = THIN_FAMILY(polygon, 1, 1),
-    [ISECT_CONVEX]       = FAMILY(convex, SURFACE_SOLID, 1, 0),
-    [ISECT_CYLINDER]     = FAMILY(cylinder, SURFACE_SOLID_IF_CAPPED, 0, 1),
-    [ISECT_CYLINDER_INF] = FAMILY(cylinder_inf, SURFACE_SOLID, 0, 0),
-    [ISECT_ELLIPSOID]    = FAMILY(ellipsoid, SURFACE_SOLID, 0, 0),
-    [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0),
+    [ISECT_CONVEX]       = FAMILY(convex, SURFACE_SOLID, 1, 0, convex_tangent_side),
+    [ISECT_CYLINDER]     = FAMILY(cylinder, SURFACE_SOLID_IF_CAPPED, 0, 1, NULL),
+    [ISECT_CYLINDER_INF] = FAMILY(cylinder_inf, SURFACE_SOLID, 0, 0, NULL),
+    [ISECT_ELLIPSOID]    = FAMILY(ellipsoid, SURFACE_SOLID, 0, 0, NULL),
+    [ISECT_QUADRIC]      = FAMILY(quadric, SURFACE_SOLID, 0, 0, NULL),
     [ISECT_MESH]         = { mesh_check, NULL, mesh_contains, mesh_family_hits_all,
                              mesh_family_hit_first, mesh_family_first_batch,
-                             SURFACE_SOLID_IF_CLOSED, 0, 1, mesh_side_test },
+                             SURFACE_SOLID_IF_CLOSED, 0, 1, mesh_side_test,
+                             mesh_tangent_side },
 };
 
 int shape_is_solid(const shape_family *f, const isect_shape *s)
@@ -243,6 +248,20 @@ int shape_point_side(const shape_family *f, const isect_shape *s, const double p
     if (!all_finite(q, 3))
         return ISECT_E_NONFINITE;
     return f->side(s, q, prim);
+}
+
+int shape_direction_side(const shape_family *f, const isect_shape *s, const double d[3],
+                         int32_t prim)
+{
+    if (f->tangent_side == NULL)
+        return SIDE_CURVED;
+    if (s->xform == NULL)
+        return f->tangent_side(s, d, prim);
+    double q[3];
+    xform_vector_to_object(s->xform, d, q);
+    if (!all_finite(q, 3))
+        return ISECT_E_NONFINITE;
+    return f->tangent_side(s, q, prim);
 }
 
 int shape_prim_valid(const isect_shape *s, int32_t prim)

@@ -32,6 +32,36 @@ static double ulp_of(double m)
     return ldexp(1.0, e - 53);
 }
 
+/*
+ * The exact sign of dir against the surface at the hit. A flat prim (plane,
+ * triangle, polygon, convex face, mesh face) answers against its exact plane
+ * (shape_direction_side): the hit's unit normal is that plane's rounded, up
+ * to ~4u off in direction, and a direction within that of the plane (found
+ * by fuzz_spawn: the rounded normal of a 45-degree triangle exactly
+ * perpendicular to dir, the exact plane not) would start the ray on the
+ * side it then crosses back from. Untransformed, the plain dot product with
+ * the normal decides first where it clears that error and its own rounding
+ * (8u |dir| <= 2^-48 max|dir_k| covers both; 2^-46 leaves a margin; 2^-1000
+ * covers products that underflowed). A curved prim's surface direction is
+ * the hit's normal itself: its dot product's exact sign (dyadic_sum: a
+ * subnormal direction's plain product can underflow to -0).
+ */
+static int direction_side(const shape_family *f, const isect_shape *shape, const isect_hit *hit,
+                          const double dir[3])
+{
+    double dot_plain = v3_dot(dir, hit->normal);
+    if (shape->xform == NULL && fabs(dot_plain) > 0x1p-46 * v3_max_abs(dir) + 0x1p-1000)
+        return dot_plain > 0.0 ? 1 : -1;
+    int side = shape_direction_side(f, shape, dir, hit->prim);
+    if (side != SIDE_CURVED)
+        return side;
+    dyadic_sum dot;
+    dyadic_init(&dot);
+    for (int k = 0; k < 3; k++)
+        dyadic_add3(&dot, 1.0, dir[k], hit->normal[k], 1.0);
+    return dyadic_sign(&dot);
+}
+
 ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, const double dir[3],
                               isect_ray *out)
 {
@@ -52,27 +82,11 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
     if (hit->normal[0] == 0.0 && hit->normal[1] == 0.0 && hit->normal[2] == 0.0)
         return ISECT_E_ARG; /* not a record of a hit */
 
-    /* The side dir points into: in front of the normal (outside a solid),
+    /* The side dir points into: in front of the surface (outside a solid),
      * or behind it; a direction along the tangent plane leaves in front. */
-    /* dir.normal's exact sign: the plain dot product where it clears its
-     * bound (3u sum|terms|, plus 2^-1000 for underflowed products), else
-     * exactly — a plain dot product of tiny components can underflow to
-     * -0 or +0 and pick the wrong side (a subnormal direction beside a
-     * normal of unit size) */
-    double dot_plain = v3_dot(dir, hit->normal);
-    double dot_bound = 0x1p-51 * (fabs(dir[0] * hit->normal[0]) + fabs(dir[1] * hit->normal[1])
-                                  + fabs(dir[2] * hit->normal[2]))
-                     + 0x1p-1000;
-    int dot_sign;
-    if (fabs(dot_plain) > dot_bound) {
-        dot_sign = dot_plain > 0.0 ? 1 : -1;
-    } else {
-        dyadic_sum dot;
-        dyadic_init(&dot);
-        for (int k = 0; k < 3; k++)
-            dyadic_add3(&dot, 1.0, dir[k], hit->normal[k], 1.0);
-        dot_sign = dyadic_sign(&dot);
-    }
+    int dot_sign = direction_side(f, shape, hit, dir);
+    if (dot_sign == ISECT_E_NONFINITE)
+        return dot_sign; /* the transform left the doubles */
     int want = dot_sign >= 0 ? 1 : -1;
     int closed_solid = shape->type == ISECT_MESH && shape_is_solid(f, shape);
     /* a closed mesh's containment by crossing parity, whatever rule the

@@ -61,6 +61,7 @@ int all_finite(const double *x, int64_t n);
 /* Transforms without argument checks (xform.c). */
 void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out);
 void xform_point_to_object(const isect_xform *x, const double p[3], double out[3]);
+void xform_vector_to_object(const isect_xform *x, const double v[3], double out[3]);
 void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n);
 /* The sign of the determinant of x's linear part, exactly: -1 for a
  * mirroring transform (it turns a surface's orientation inside out). */

@@ -111,6 +111,11 @@ void xform_point_to_object(const isect_xform *x, const double p[3], double out[3
     affine_point(x->inv, p, out);
 }
 
+void xform_vector_to_object(const isect_xform *x, const double v[3], double out[3])
+{
+    affine_vector(x->inv, v, out);
+}
+
 int xform_orientation(const isect_xform *x)
 {
     /* det of the rows = orient3 of the rows against the origin (orient3's

@@ -413,5 +413,12 @@ int mesh_side_test(const isect_shape *s, const double p[3], int32_t prim)
         const double *c = mesh_vertex(m, corners[2]);
         return collinear3(a, b, c) ? 1 : -orient3_sign(a, b, c, p);
     }
-    return polygon_plane_side(m->verts, corners, n, p);
+    return polygon_plane_sign(m->verts, corners, n, p, 1);
+}
+
+int mesh_tangent_side(const isect_shape *s, const double d[3], int32_t prim)
+{
+    const isect_mesh *m = s->mesh;
+    const int32_t *corners = m->idx + mesh_face_start(m, prim);
+    return polygon_plane_sign(m->verts, corners, mesh_face_size(m, prim), d, 0);
 }

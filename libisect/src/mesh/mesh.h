@@ -103,8 +103,11 @@ int     mesh_contains(const isect_shape *s, const double p[3]);
 int64_t mesh_hit_first_batch(const isect_shape *s, const isect_ray *rays, int64_t n,
                              const isect_params *prm, isect_hit *closest);
 /* The exact side of p against face prim's plane (prim/prim.h): a
- * triangle's by orient3, a polygon's by polygon_plane_side. */
+ * triangle's by orient3, a polygon's by polygon_plane_sign. */
 int     mesh_side_test(const isect_shape *s, const double p[3], int32_t prim);
+/* The exact side of the direction d against face prim's plane (prim/prim.h:
+ * X_tangent_side). */
+int     mesh_tangent_side(const isect_shape *s, const double d[3], int32_t prim);
 /* The signed count of the exact crossings of the perturbed +x ray from p
  * (mesh_query.c: each crossing +1 where the ray leaves through a face's
  * front, -1 where it enters): for a closed, consistently oriented mesh the

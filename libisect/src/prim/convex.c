@@ -350,3 +350,12 @@ int convex_side_test(const isect_shape *s, const double p[3], int32_t prim)
     }
     return all_negative ? -1 : 0;
 }
+
+/* A convex polyhedron is flat on each face: the plane prim's a.d. */
+int convex_tangent_side(const isect_shape *s, const double d[3], int32_t prim)
+{
+    if (prim < 0 || prim >= s->n)
+        return SIDE_CURVED; /* not a face of this shape: the hit's normal decides */
+    isect_shape plane = { ISECT_PLANE, 0, 0, 0, s->data + 4 * (int64_t)prim, NULL, NULL };
+    return plane_tangent_side(&plane, d, -1);
+}

@@ -18,6 +18,7 @@
  */
 #include "prim/prim.h"
 #include "prim/plane_lanes.h"
+#include "core/dyadic_sum.h"
 #include "core/expansion.h"
 #include "core/scaling.h"
 #include "core/ratio.h"
@@ -133,4 +134,16 @@ int plane_side_test(const isect_shape *s, const double p[3], int32_t prim)
         xp_add(&sum, &sum, &term);
     }
     return xp_sign(&sum);
+}
+
+/* n.d exactly, whatever the exponents of n and d (dyadic_sum: a subnormal
+ * component of d beside a normal one). */
+int plane_tangent_side(const isect_shape *s, const double d[3], int32_t prim)
+{
+    (void)prim;
+    dyadic_sum dot;
+    dyadic_init(&dot);
+    for (int k = 0; k < 3; k++)
+        dyadic_add3(&dot, 1.0, s->data[k], d[k], 1.0);
+    return dyadic_sign(&dot);
 }

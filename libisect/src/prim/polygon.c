@@ -465,19 +465,21 @@ ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4])
  * sign(N.(p - m)) with N = sum_i v_i x v_{i+1} (Newell) and m the vertex
  * centroid, both exact: n N.(p - m) = sum_k N_k (n p_k - sum_i v_ik). All
  * coordinates are first scaled by one power of two (degree 3: the sign is
- * kept).
+ * kept). A direction (w = 0) has no centroid term: sign(N.d), d scaled by
+ * its own power of two, as its magnitude is unrelated to the vertices'.
  */
-int polygon_plane_side(const double *v, const int32_t *idx, int n, const double p[3])
+int polygon_plane_sign(const double *v, const int32_t *idx, int n, const double p[3], int w)
 {
-    double m = max_abs3(p);
+    double m = w ? max_abs3(p) : 0.0;
     for (int i = 0; i < n; i++)
         m = fmax_nan(m, max_abs3(vertex_at(v, idx, i)));
     int e = pow2_exponent(m);
+    int e_p = w ? e : pow2_exponent(max_abs3(p));
     xp normal[3], t[3], tmp, tmp2;
     for (int k = 0; k < 3; k++) {
         xp_set(&normal[k], 0.0);
         xp_set(&t[k], (double)n);
-        xp_scale(&t[k], &t[k], pow2_scale(p[k], -e));
+        xp_scale(&t[k], &t[k], pow2_scale(p[k], -e_p));
     }
     const double *prev = vertex_at(v, idx, n - 1);
     for (int i = 0; i < n; i++) {
@@ -493,7 +495,8 @@ int polygon_plane_side(const double *v, const int32_t *idx, int n, const double 
             xp_scale(&tmp2, &tmp2, b[i1]);
             xp_sub(&tmp, &tmp, &tmp2);
             xp_add(&normal[k], &normal[k], &tmp);
-            xp_add_d(&t[k], -b[k]);
+            if (w)
+                xp_add_d(&t[k], -b[k]);
         }
         prev = cur;
     }
@@ -509,5 +512,13 @@ int polygon_side_test(const isect_shape *s, const double p[3], int32_t prim)
     (void)prim;
     if (vertices_collinear(s->data, NULL, s->n))
         return 1; /* degenerate */
-    return polygon_plane_side(s->data, NULL, s->n, p);
+    return polygon_plane_sign(s->data, NULL, s->n, p, 1);
+}
+
+int polygon_tangent_side(const isect_shape *s, const double d[3], int32_t prim)
+{
+    (void)prim;
+    if (vertices_collinear(s->data, NULL, s->n))
+        return 0; /* degenerate: never hit */
+    return polygon_plane_sign(s->data, NULL, s->n, d, 0);
 }

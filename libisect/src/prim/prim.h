@@ -122,10 +122,26 @@ ISECT_DECLARE_SIDE(cylinder)
 ISECT_DECLARE_SIDE(cylinder_inf)
 ISECT_DECLARE_SIDE(quadric)
 
-/* The exact side of p against the plane through the polygon whose i-th
- * vertex is v + 3*idx[i] (idx NULL: v + 3*i), n >= 3: the plane through
- * the vertex centroid with Newell's normal, both exact (the polygon's plane
- * as the golden reference defines it). +1 in front of the normal. */
-int polygon_plane_side(const double *v, const int32_t *idx, int n, const double p[3]);
+/* Exact side of a direction d (object space) against the plane of a flat
+ * surface at prim, for spawning rays off it (api/spawn.c): +1 when d points
+ * to the side X_side_test calls +1, -1 to the other, 0 along the plane. A
+ * hit's rounded unit normal cannot decide a nearly tangent d: the exact
+ * plane can lean the other way by an ulp. SIDE_CURVED when prim has no
+ * single plane (the caller then takes the hit's normal as the surface's). */
+#define SIDE_CURVED 2
+#define ISECT_DECLARE_TANGENT(X) \
+    int X##_tangent_side(const isect_shape *s, const double d[3], int32_t prim);
+ISECT_DECLARE_TANGENT(plane)
+ISECT_DECLARE_TANGENT(triangle)
+ISECT_DECLARE_TANGENT(polygon)
+ISECT_DECLARE_TANGENT(convex)
+
+/* The exact side of p (w = 1), or of the direction p (w = 0), against the
+ * plane through the polygon whose i-th vertex is v + 3*idx[i] (idx NULL:
+ * v + 3*i), n >= 3: the plane through the vertex centroid with Newell's
+ * normal, both exact (the polygon's plane as the golden reference defines
+ * it; a triangle's Newell normal is (b - a) x (c - a)). +1 in front of the
+ * normal. */
+int polygon_plane_sign(const double *v, const int32_t *idx, int n, const double p[3], int w);
 
 #endif /* ISECT_PRIM_H */

@@ -265,3 +265,11 @@ int triangle_side_test(const isect_shape *s, const double p[3], int32_t prim)
         return 1; /* degenerate */
     return -orient3_sign(a, b, c, p);
 }
+
+int triangle_tangent_side(const isect_shape *s, const double d[3], int32_t prim)
+{
+    (void)prim;
+    if (collinear3(s->data, s->data + 3, s->data + 6))
+        return 0; /* degenerate: never hit */
+    return polygon_plane_sign(s->data, NULL, 3, d, 0);
+}
