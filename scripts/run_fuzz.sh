@@ -19,7 +19,11 @@ mkdir -p "$fz/corpus/$name" "$fz/seeds/$name" "$fz/artifacts" "$fz/logs"
 # runaway allocation; -max_len: the seeds are below 3 KB.
 # FUZZ_SEED (make test: 1) fixes libFuzzer's mutation sequence, so a run
 # explores the same inputs wherever it runs (0: a random seed).
-"$bin" "$fz/corpus/$name" "$fz/seeds/$name" -max_total_time="$seconds" -timeout=20 \
+# Inputs that once failed (tests/fuzz/regressions/NAME/, each file named
+# for what it caught) are read as seeds on every run.
+regressions=$(dirname "$0")/../tests/fuzz/regressions/$name
+[ -d "$regressions" ] || regressions=
+"$bin" "$fz/corpus/$name" "$fz/seeds/$name" $regressions -max_total_time="$seconds" -timeout=20 \
     -seed="${FUZZ_SEED:-0}" \
     -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$fz/artifacts/$name-" \
     -print_final_stats=1 >"$log" 2>&1

@@ -565,20 +565,27 @@ ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double 
 
 /* A ray leaving shape's surface at hit (a record this library returned for
  * shape, in world space) in direction dir — a reflection, a refraction, a
- * shadow ray. out->org is hit->point moved along the hit's normal by the
- * fewest whole ulps of its largest coordinate (1, 2, 4, ...) that put it
- * strictly on the side of the surface dir points into (in front of the
- * normal when dir.normal >= 0, behind it otherwise), as the shape's exact
- * side test decides it in object space (for a closed mesh, its exact
- * containment test must agree too); out->dir = dir, out->tmin = 0,
- * out->tmax = +INFINITY. Because crossings are decided exactly against
+ * shadow ray. out->org is hit->point moved by the fewest whole ulps of its
+ * largest coordinate (1, 2, 4, ...) that put it strictly on the side of the
+ * surface dir points into, as the shape's exact side test decides it in
+ * object space (for a closed mesh, its exact containment test must agree,
+ * off the surface); out->dir = dir, out->tmin = 0, out->tmax = +INFINITY.
+ * The side dir points into: for a flat part (plane, triangle, polygon, a
+ * convex or mesh face) the side of its exact plane dir points to; for a
+ * curved one, in front of the normal when dir.normal >= 0 (exact sign),
+ * behind it otherwise; dir along the plane counts as in front. The move is
+ * along the hit's normal, or, where that never reaches the side (a hit on
+ * an edge or corner of a solid with dir pointing into it), along the normal
+ * plus dir. Because crossings are decided exactly against
  * tmin = 0, intersecting out never finds the surface it leaves at t ~ 0, and
  * it still finds any other surface more than a few ulps away.
  * ISECT_OK; ISECT_E_ARG for NULL arguments, a hit kind other than ENTER,
  * EXIT or TOUCH, a zero normal or a mesh face index out of range;
  * ISECT_E_NONFINITE for NaN/Inf in hit or dir; ISECT_E_DEGENERATE for a
  * zero dir, or when no offset leaves the surface (a degenerate shape, a
- * point that is not near the surface). Added in 1.1. */
+ * point that is not near the surface, dir running inward along another face
+ * through the edge or corner the hit lies on: the new ray would lie in that
+ * face, on neither side of the solid's boundary). Added in 1.1. */
 ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit,
                               const double dir[3], isect_ray *out);
 

@@ -331,8 +331,75 @@ static void test_nearly_tangent_flat(void)
     }
 }
 
+/* Spawning inward at an edge or corner of a solid: the primary ray meets
+ * the unit cube [0,1]^3 exactly on its edge x = 1, z = 1 (or its corner
+ * (1,1,1)), and the new direction points into the solid. Offsets along the
+ * hit face's inward normal alone stay on the other face through that edge
+ * at every step (isect_spawn_ray returned ISECT_E_DEGENERATE); the
+ * spawned ray must start strictly inside and meet the cube exactly once,
+ * leaving it through the far side at t ~ 1 (never at t ~ 0). For the box,
+ * the same cube as a convex polyhedron and as a closed mesh of quads (where
+ * the origin must also be off the other face: a ray from a point on it met
+ * that face at t = 0). */
+static void test_edges_and_corners(void)
+{
+    static const double box[6] = { 0, 0, 0, 1, 1, 1 };
+    static const double cube_planes[24] = { 1, 0, 0, -1, -1, 0, 0, 0, 0, 1, 0, -1,
+                                            0, -1, 0, 0, 0, 0, 1, -1, 0, 0, -1, 0 };
+    const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+    isect_mesh *m = make_box_mesh(lo, hi);
+    isect_shape shapes[3] = { { ISECT_AABB, 0, 0, 0, box, NULL, NULL },
+                              { ISECT_CONVEX, 6, 0, 0, cube_planes, NULL, NULL },
+                              { ISECT_MESH, 0, 0, 0, NULL, m, NULL } };
+    /* primary rays onto the edge (1, 0.5, 1) and the corner (1, 1, 1), each
+     * with two inward directions whose exit lies 1 away along x or z */
+    static const double aims[2][3] = { { 1, 0.5, 1 }, { 1, 1, 1 } };
+    static const double from[3][3] = { { 0, 0, -1 }, { -1, 0, 0 }, { -1, -1, -1 } };
+    static const double inward[2][3] = { { -1, 0, -1 }, { -1, -0.25, -0.5 } };
+    for (int si = 0; si < 3; si++) {
+        for (int a = 0; a < 2; a++) {
+            for (int fi = 0; fi < 3; fi++) {
+                isect_ray r;
+                for (int k = 0; k < 3; k++) {
+                    r.org[k] = aims[a][k] - 2.0 * from[fi][k];
+                    r.dir[k] = from[fi][k];
+                }
+                r.tmin = 0.0;
+                r.tmax = INFINITY;
+                isect_hit h, again[4];
+                if (isect_intersect(&shapes[si], &r, NULL, &h, 1) < 1 || h.t != 2.0) {
+                    CHECK(0 && "the primary ray meets the edge or corner at t = 2");
+                    continue;
+                }
+                for (int d = 0; d < 2; d++) {
+                    isect_ray out;
+                    int st = isect_spawn_ray(&shapes[si], &h, inward[d], &out);
+                    if (a == 1 && d == 0) {
+                        /* (-1, 0, -1) from the corner runs in the face
+                         * y = 1: no offset along the hit's normal and dir
+                         * leaves that face, as isect.h documents */
+                        CHECK(st == ISECT_E_DEGENERATE);
+                        continue;
+                    }
+                    CHECK(st == ISECT_OK);
+                    if (st != ISECT_OK) {
+                        fprintf(stderr, "shape %d aim %d from %d dir %d: status %d\n", si, a, fi,
+                                d, st);
+                        continue;
+                    }
+                    CHECK(isect_contains(&shapes[si], out.org) == 1);
+                    int n = isect_intersect(&shapes[si], &out, NULL, again, 4);
+                    CHECK(n == 1 && again[0].kind == ISECT_EXIT && again[0].t > 0.5);
+                }
+            }
+        }
+    }
+    isect_mesh_destroy(m);
+}
+
 int main(int argc, char **argv)
 {
+    test_edges_and_corners();
     test_underflowing_side();
     test_nearly_tangent_flat();
     int64_t per_shape = argc > 1 ? atoll(argv[1]) : 100000;

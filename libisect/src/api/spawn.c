@@ -15,7 +15,9 @@
  * more than a few ulps away is never skipped.
  */
 #include "api/dispatch.h"
+#include "mesh/mesh.h"
 #include "core/dyadic_sum.h"
+#include "core/scaling.h"
 
 #include "core/vec3.h"
 
@@ -62,6 +64,35 @@ static int direction_side(const shape_family *f, const isect_shape *shape, const
     return dyadic_sign(&dot);
 }
 
+/* 1 when q (a point off hit->point) is strictly on side want of the
+ * surface and, for a closed mesh, strictly inside (want < 0) or outside it
+ * by the exact crossing count: a point on another face (through an edge of
+ * the hit face) is on neither side, and a ray from it would meet that face
+ * at t = 0. 0 when not; or a negative status. */
+static int spawn_origin_ok(const shape_family *f, const isect_shape *shape, const isect_hit *hit,
+                           const double q[3], int want, int closed_mesh)
+{
+    if (q[0] == hit->point[0] && q[1] == hit->point[1] && q[2] == hit->point[2])
+        return 0;
+    int side = shape_point_side(f, shape, q, hit->prim);
+    if (side == ISECT_E_NONFINITE)
+        return side; /* the transform left the doubles */
+    if (side != want)
+        return 0;
+    if (!closed_mesh)
+        return 1;
+    double object_q[3];
+    const double *p = q;
+    if (shape->xform != NULL) {
+        xform_point_to_object(shape->xform, q, object_q);
+        p = object_q; /* finite: the side test above took the same image */
+    }
+    int64_t crossings;
+    if (mesh_crossing_count(shape->mesh, p, &crossings))
+        return 0; /* on the surface */
+    return (crossings & 1) == (want < 0);
+}
+
 ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, const double dir[3],
                               isect_ray *out)
 {
@@ -88,32 +119,41 @@ ISECT_API int isect_spawn_ray(const isect_shape *shape, const isect_hit *hit, co
     if (dot_sign == ISECT_E_NONFINITE)
         return dot_sign; /* the transform left the doubles */
     int want = dot_sign >= 0 ? 1 : -1;
-    int closed_solid = shape->type == ISECT_MESH && shape_is_solid(f, shape);
-    /* a closed mesh's containment by crossing parity, whatever rule the
-     * descriptor carries: exact, and what the side test must agree with */
-    isect_shape parity = *shape;
-    parity.flags = ISECT_EVEN_ODD;
+    /* a closed mesh's containment by its exact crossing parity, whatever
+     * rule the descriptor carries, must agree with the face's side test */
+    int closed_mesh = shape->type == ISECT_MESH && shape_is_solid(f, shape);
+    /* Two offsets per step: along the normal alone, then, where that fails,
+     * along want*normal + dir/max|dir_k|. The second is for a hit on an
+     * edge or corner of a solid (a box, a convex polyhedron, a capped
+     * cylinder's rim, a mesh's edge) when dir points into the solid: moving
+     * along the hit face's inward normal keeps the point on the other
+     * face through that edge, at every step, and no step would ever be
+     * strictly inside; a direction strictly inside the solid's tangent cone
+     * plus a vector on its boundary is strictly inside it. On a smooth
+     * surface or a face's interior the first offset wins, as before. */
     double step = ulp_of(v3_max_abs(hit->point));
+    /* dir scaled by a power of two to a largest component in [0.5, 1): exact,
+     * even for a subnormal direction (1/max|dir_k| could overflow) */
+    double along[3];
+    int dir_exp = pow2_exponent(v3_max_abs(dir));
+    for (int k = 0; k < 3; k++)
+        along[k] = want * hit->normal[k] + pow2_scale(dir[k], -dir_exp);
     double q[3];
     for (;;) {
-        for (int k = 0; k < 3; k++)
-            q[k] = hit->point[k] + want * step * hit->normal[k];
-        if (!all_finite(q, 3))
-            return ISECT_E_DEGENERATE; /* the surface could not be left */
-        if (q[0] != hit->point[0] || q[1] != hit->point[1] || q[2] != hit->point[2]) {
-            int side = shape_point_side(f, shape, q, hit->prim);
-            if (side == ISECT_E_NONFINITE)
-                return side; /* the transform left the doubles */
-            if (side == want) {
-                if (!closed_solid)
-                    break;
-                int inside = shape_point_inside(f, &parity, q);
-                if (inside < 0)
-                    return inside;
-                if (inside == (want < 0))
-                    break;
-            }
+        int found = 0;
+        for (int tries = 0; tries < 2 && !found; tries++) {
+            const double *off = tries == 0 ? hit->normal : along;
+            double sign = tries == 0 ? want : 1.0;
+            for (int k = 0; k < 3; k++)
+                q[k] = hit->point[k] + sign * step * off[k];
+            if (!all_finite(q, 3))
+                return ISECT_E_DEGENERATE; /* the surface could not be left */
+            found = spawn_origin_ok(f, shape, hit, q, want, closed_mesh);
+            if (found < 0)
+                return found;
         }
+        if (found)
+            break;
         step *= 2.0;
     }
     for (int k = 0; k < 3; k++) {

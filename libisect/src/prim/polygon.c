@@ -8,6 +8,7 @@
 #include "prim/polygon_lanes.h"
 #include "core/frame_signs.h"
 #include "core/ratio.h"
+#include "core/dyadic_sum.h"
 #include "core/expansion.h"
 #include "core/predicates.h"
 #include "core/scaling.h"
@@ -465,8 +466,8 @@ ISECT_API int isect_plane_from_points(const double *v, int n, double plane[4])
  * sign(N.(p - m)) with N = sum_i v_i x v_{i+1} (Newell) and m the vertex
  * centroid, both exact: n N.(p - m) = sum_k N_k (n p_k - sum_i v_ik). All
  * coordinates are first scaled by one power of two (degree 3: the sign is
- * kept). A direction (w = 0) has no centroid term: sign(N.d), d scaled by
- * its own power of two, as its magnitude is unrelated to the vertices'.
+ * kept). A direction (w = 0) has no centroid term: sign(N.d), d kept
+ * apart from the vertex scaling, as its magnitude is unrelated to theirs.
  */
 int polygon_plane_sign(const double *v, const int32_t *idx, int n, const double p[3], int w)
 {
@@ -499,6 +500,31 @@ int polygon_plane_sign(const double *v, const int32_t *idx, int n, const double 
                 xp_add_d(&t[k], -b[k]);
         }
         prev = cur;
+    }
+    if (!w) {
+        /* N.d for a direction: its components can span any range (a
+         * subnormal one beside 2^100), which one power-of-two scaling of d
+         * would underflow; dyadic_sum takes each N_k part times d_k exactly
+         * whatever the exponents. A polygon whose N has more parts than it
+         * holds (not seen for faces of a few vertices) takes the scaled
+         * sum below, with a tiny N first scaled up to a largest part near 1
+         * (only up: no part loses a bit). */
+        if (normal[0].n + normal[1].n + normal[2].n <= DYADIC_SUM_TERMS) {
+            dyadic_sum dot;
+            dyadic_init(&dot);
+            for (int k = 0; k < 3; k++)
+                for (int i = 0; i < normal[k].n; i++)
+                    dyadic_add3(&dot, 1.0, normal[k].p[i], p[k], 1.0);
+            return dyadic_sign(&dot);
+        }
+        double top = 0.0;
+        for (int k = 0; k < 3; k++)
+            if (normal[k].n > 0)
+                top = fmax_nan(top, fabs(normal[k].p[normal[k].n - 1]));
+        int e_n = pow2_exponent(top);
+        for (int k = 0; k < 3 && e_n < 0; k++)
+            for (int i = 0; i < normal[k].n; i++)
+                normal[k].p[i] = pow2_scale(normal[k].p[i], -e_n);
     }
     xp sum;
     xp_set(&sum, 0.0);
