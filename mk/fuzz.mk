@@ -27,7 +27,7 @@ FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 # clean rebuild of build/fuzz is needed after changing them.
 FUZZ_DEFS ?=
 FUZZ_CFLAGS := $(WARN) -O1 -ffp-contract=off $(FUZZ_SAN) -Ilibisect/include -Itests/fuzz $(FUZZ_DEFS)
-FUZZ_NAMES := shape spawn mesh mesh_parity polygon2 corpus
+FUZZ_NAMES := shape spawn mesh mesh_parity polygon2 corpus winding
 FUZZ_BINS := $(FUZZ_NAMES:%=$(FZ)/fuzz_%)
 FUZZ_OBJS := $(SRCS:libisect/src/%.c=$(FZ)/obj/%.o)
 FUZZ_LIB := $(FZ)/libisect.a

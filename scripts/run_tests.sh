@@ -88,8 +88,9 @@ if [ -x $B/tests/corpus_runner ]; then
 fi
 # libFuzzer harnesses (tests/fuzz/, ASan+UBSan, invariants asserted), 60 s
 # each: every shape query, spawned rays, mesh arrays, exactly-once parity on
-# fuzzed closed meshes, the 2D polygon helpers, the corpus reader.
-for h in shape spawn mesh mesh_parity polygon2 corpus; do
+# fuzzed closed meshes, the 2D polygon helpers, the corpus reader, winding
+# numbers and mesh containment rules.
+for h in shape spawn mesh mesh_parity polygon2 corpus winding; do
     [ -x $B/fuzz/fuzz_$h ] && step "fuzz_$h 60 s [libFuzzer asan+ubsan]" \
         env FUZZ_SEED=1 sh scripts/run_fuzz.sh $B/fuzz $h 60
 done

@@ -19,10 +19,11 @@
  *    may be 0 with hits NULL to count only.
  *  - A negative return value is an error status (ISECT_E_*); isect_strerror()
  *    describes it. Nothing is written to the hit buffer on error. No function
- *    aborts, prints or keeps global state; all are reentrant. Two functions
- *    allocate and can fail with ISECT_E_NOMEM: isect_mesh_create (the mesh)
- *    and isect_mesh_check (working arrays of the size of the mesh's face
- *    corners, freed before it returns). isect_intersect_batch on a mesh
+ *    aborts, prints or keeps global state; all are reentrant. Three
+ *    functions allocate and can fail with ISECT_E_NOMEM: isect_mesh_create
+ *    (the mesh), isect_mesh_check (working arrays of the size of the mesh's
+ *    face corners) and isect_winding_number_batch (its cluster tree), the
+ *    last two freeing them before they return. isect_intersect_batch on a mesh
  *    allocates its traversal lanes when it can and otherwise traces the same
  *    records without them: it never fails for memory. Nothing else
  *    allocates.
@@ -551,7 +552,11 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
  *  - accuracy > 0: the hierarchical evaluation of Barill et al. (2018) over
  *    the mesh's BVH, second order, expanding a cluster of faces only where
  *    its proven truncation error is small enough that the errors sum to
- *    at most accuracy: |w - (accuracy 0)| <= accuracy. The exact hierarchy
+ *    at most accuracy: |w - exact| <= accuracy + the rounding bounds above
+ *    of the faces (and cluster caps) it sums directly, so within accuracy
+ *    of the accuracy-0 value wherever those bounds are small (everywhere
+ *    but beside extreme slivers, a triangle 2^200 long passing a point at
+ *    distance 10, where both can be far off). The exact hierarchy
  *    is already fast, so this pays only for points far from big meshes.
  *    Both build a cluster tree per call (~1.5 KiB per BVH node and ~100
  *    bytes per face, freed before returning).

@@ -13,6 +13,8 @@ SEEDS/<harness>/, encoded in the byte layout of tests/fuzz/fuzz_input.h
   polygon2     point_in_polygon2, winding_number2, polygon_normal and
                plane_from_points cases
   corpus       every case as a one-case corpus document
+  winding      the octahedron closed, open and inside out, and a soup, at
+               points inside, outside, on a vertex and on an edge
 The seeds are build products (not committed): `make fuzz-seeds` writes them.
 Standard library only, so it runs before any virtual environment exists.
 """
@@ -203,6 +205,24 @@ def parity_seeds():
     return out
 
 
+def winding_seeds():
+    """The octahedron (mode 1 closed, 2 open, 3 inside out; offsets 0) and a
+    two-triangle soup (mode 0), at the centre, a far point, a point beside
+    a face, vertex 0 and an edge midpoint; mode bit 2 adds a mirror."""
+    points = b"".join(u8(0) + b"".join(d(x) for x in p)
+                      for p in ((0.0, 0.0, 0.0), (5.0, -3.0, 0.5), (0.5, 0.5, 0.5)))
+    points += u8(1) + u8(2 + 4 * 1 + 32 * 2)
+    out = []
+    for mode in (1, 2, 3, 1 | 4):
+        seed = u8(mode) + (b"\x01\x00" * 18) + (u8(3) if mode & 3 == 2 else b"")
+        out.append(seed + u8(0) + u8(5) + points)
+    soup = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    seed = u8(0) + u8(1) + b"".join(d(x) for v in soup for x in v)
+    seed += u8(1) + u8(0) + u8(1) + u8(2) + u8(0) + u8(3) + u8(1)
+    out.append(seed + u8(1) + u8(5) + points)
+    return out
+
+
 def corpus_seed(case, header):
     doc = {"schema": header["schema"], "family": header.get("family", "fuzz"),
            "number_of_cases": 1, "cases": [case]}
@@ -224,7 +244,7 @@ def main(argv):
     cases_dir, root = argv[1], argv[2]
     makers = {"shape": shape_seed, "spawn": spawn_seed, "mesh": mesh_seed,
               "polygon2": polygon2_seed}
-    counts = {h: 0 for h in list(makers) + ["mesh_parity", "corpus"]}
+    counts = {h: 0 for h in list(makers) + ["mesh_parity", "corpus", "winding"]}
     for fname in sorted(os.listdir(cases_dir)):
         if not fname.endswith(".json"):
             continue
@@ -243,6 +263,9 @@ def main(argv):
     for seed in parity_seeds():
         write(root, "mesh_parity", seed)
         counts["mesh_parity"] += 1
+    for seed in winding_seeds():
+        write(root, "winding", seed)
+        counts["winding"] += 1
     print("seeds: " + ", ".join("%s %d" % kv for kv in sorted(counts.items())))
     return 0
 

@@ -100,6 +100,10 @@
 #define WINDING_PI 3.14159265358979323846
 #define WINDING_TINY 0x1p-1000
 #define WINDING_REFINE 0x1p-40 /* rad: refine a triangle's angle beyond this bound */
+/* A cluster's cap stands in for its faces only while the cap's own error
+ * bound is at most this (in units of w): then the exact hierarchy keeps
+ * the value of the plain sum to about its rounding. */
+#define WINDING_CAP_TOLERANCE 0x1p-40
 
 /* The angles' compensated sum (core/scaling.h) and their bounds' sum. */
 typedef struct angle_sum {
@@ -194,9 +198,26 @@ static double triangle_solid_angle_dd(const double A[3], const double B[3], cons
 
 /* The signed solid angle of triangle A, B, C at q, and its error bound
  * when want_bound (see the top of the file). */
-static double triangle_solid_angle(const double A[3], const double B[3], const double C[3],
-                                   const double q[3], int want_bound, double *bound)
+static double triangle_solid_angle(const double A_in[3], const double B_in[3],
+                                   const double C_in[3], const double q_in[3], int want_bound,
+                                   double *bound)
 {
+    /* num and den are forms of degree 3 in the coordinates, so Omega is
+     * unchanged when all four points are scaled by one power of two, which
+     * is done where the triple products could overflow (coordinates beyond
+     * 2^300) or underflow (all below 2^-300): exact, but for bits of
+     * coordinates 2^1000 below the largest, which are lost to underflow */
+    double As[3], Bs[3], Cs[3], qs[3];
+    const double *A = A_in, *B = B_in, *C = C_in, *q = q_in;
+    double m = fmax_nan(fmax_nan(max_abs3(A), max_abs3(B)), fmax_nan(max_abs3(C), max_abs3(q)));
+    int e = pow2_exponent(m);
+    if (e > 300 || (e < -300 && m > 0.0)) {
+        scale3(As, A, e);
+        scale3(Bs, B, e);
+        scale3(Cs, C, e);
+        scale3(qs, q, e);
+        A = As, B = Bs, C = Cs, q = qs;
+    }
     double a[3], b[3], c[3], e1[3], e2[3], n[3], perm[3];
     sub3(A, q, a);
     sub3(B, q, b);
@@ -565,23 +586,41 @@ static int outside_box(const bvh_node *n, int c, const double q[3])
     return 0;
 }
 
-/* Adds the cluster's solid angle at q through its boundary (see the top of
- * the file): the cap, the fan from one boundary vertex over the boundary
+/* The cluster's solid angle at q through its boundary (see the top of the
+ * file): the cap, the fan from one boundary vertex over the boundary
  * edges, closes the cluster inside its box, so for q outside the box the
- * cluster's angle is minus the cap's: sum count * Omega(apex, a, b). */
-static void cluster_cap(const isect_mesh *m, const mesh_winding_tree *t, const winding_cluster *cl,
-                        const double q[3], int want_bound, angle_sum *s)
+ * cluster's angle is minus the cap's: sum count * Omega(apex, a, b) over
+ * the directed boundary edges a -> b (the reversed cap). The
+ * identity is exact, but the cap's triangles can be far worse conditioned
+ * than the faces (a cluster of slivers 2^200 long seen from beside them:
+ * its cap's angles cancel to nothing in double-double too), so it is
+ * added to s only when its own error bound is at most `tolerance` (in
+ * units of w); returns 1 then, else 0 (the caller sums the faces). */
+static int cluster_cap(const isect_mesh *m, const mesh_winding_tree *t, const winding_cluster *cl,
+                       const double q[3], double tolerance, angle_sum *s)
 {
+    if (cl->edge_count == 0)
+        return 1; /* no boundary: a closed cluster, 0 outside its box (and the
+                     tree may hold no edges at all: t->edges NULL) */
     const boundary_edge *e = t->edges + cl->edge_first;
     const double *apex = mesh_vertex(m, e[0].a);
+    angle_sum cap = { { 0.0, 0.0 }, 0.0 };
     for (int64_t i = 0; i < cl->edge_count; i++) {
         if (e[i].a == e[0].a)
             continue; /* a fan triangle with two corners at the apex: 0 */
         double bound;
         double omega = triangle_solid_angle(apex, mesh_vertex(m, e[i].a), mesh_vertex(m, e[i].b), q,
-                                            want_bound, &bound);
-        angle_sum_add(s, e[i].count * omega, fabs((double)e[i].count) * bound);
+                                            1, &bound);
+        angle_sum_add(&cap, e[i].count * omega, fabs((double)e[i].count) * bound);
     }
+    if (!(cap.bound <= 4.0 * WINDING_PI * tolerance))
+        return 0;
+    /* e[i].count * Omega over the boundary's directed edges is already the
+     * reversed cap's angle: the cluster's */
+    comp_add(&s->angles, cap.angles.hi);
+    comp_add(&s->angles, cap.angles.lo);
+    s->bound += cap.bound;
+    return 1;
 }
 
 /* One pass: clusters expanded where their bound is at most tau; *far_sum
@@ -610,8 +649,9 @@ static double winding_far_pass(const isect_mesh *m, const mesh_winding_tree *t, 
             if (e <= tau) {
                 angle_sum_add(&s, cluster_far(&cl[c], q, dist), 0.0);
                 far += e;
-            } else if (cl[c].edge_count < cl[c].fans && outside_box(n, c, q)) {
-                cluster_cap(m, t, &cl[c], q, bound != NULL, &s);
+            } else if (cl[c].edge_count < cl[c].fans && outside_box(n, c, q)
+                       && cluster_cap(m, t, &cl[c], q, WINDING_CAP_TOLERANCE, &s)) {
+                /* the cluster through its boundary */
             } else if (n->child[c] >= 0) {
                 stack[sp++] = n->child[c];
             } else {
