@@ -11,6 +11,7 @@ PYTHON  ?= python3
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
+DOCDIR  ?= $(PREFIX)/share/doc/isect
 DESTDIR ?=
 
 VERSION := $(shell sh scripts/version.sh)
@@ -159,11 +160,14 @@ install: lib
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
 	    libisect/isect.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+	install -d $(DESTDIR)$(DOCDIR)
+	install -m 644 LICENSE NOTICE $(DESTDIR)$(DOCDIR)/
 
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/isect.h $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
 	      $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libisect.so \
-	      $(DESTDIR)$(LIBDIR)/libisect.a $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+	      $(DESTDIR)$(LIBDIR)/libisect.a $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc \
+	      $(DESTDIR)$(DOCDIR)/LICENSE $(DESTDIR)$(DOCDIR)/NOTICE
 
 clean:
 	rm -rf $(B)

@@ -47,7 +47,7 @@ abi=$(sh scripts/version.sh abi)
 version=$(sh scripts/version.sh)
 for f in include/isect.h include/isect.mod lib/libisect.so.$version lib/libisect.so.$abi \
          lib/libisect.so lib/libisect.a lib/libisect_fortran.a lib/pkgconfig/isect.pc \
-         lib/pkgconfig/isect-fortran.pc; do
+         lib/pkgconfig/isect-fortran.pc share/doc/isect/LICENSE share/doc/isect/NOTICE; do
     if [ -e "$root/usr/$f" ]; then pass "installed /usr/$f"; else fail "installed /usr/$f"; fi
 done
 soname=$(readelf -d "$root/usr/lib/libisect.so.$abi" 2>/dev/null | sed -n 's/.*SONAME.*\[\(.*\)\].*/\1/p')
