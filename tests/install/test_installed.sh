@@ -45,7 +45,7 @@ pass "make install PREFIX=/usr DESTDIR=<tmp>"
 
 abi=$(sh scripts/version.sh abi)
 version=$(sh scripts/version.sh)
-for f in include/isect.h include/isect.mod lib/libisect.so.$version lib/libisect.so.$abi \
+for f in include/isect.h include/isect.mod include/isect.f90 lib/libisect.so.$version lib/libisect.so.$abi \
          lib/libisect.so lib/libisect.a lib/libisect_fortran.a lib/pkgconfig/isect.pc \
          lib/pkgconfig/isect-fortran.pc share/doc/isect/LICENSE share/doc/isect/NOTICE; do
     if [ -e "$root/usr/$f" ]; then pass "installed /usr/$f"; else fail "installed /usr/$f"; fi
