@@ -4,7 +4,10 @@
 # Fortran and Python suites, ABI and export checks, the corpus regeneration
 # check), `make bench` the benchmarks, `make install PREFIX=... DESTDIR=...`
 # installs.
-# meson.build builds the same library and runs the same tests.
+# meson.build builds the same library and runs the same tests; CMakeLists.txt
+# builds the library alone, for CMake users. `make test-consumers` builds small
+# programs against libisect through each route of README.md, "Using libisect
+# from your project".
 
 CC      ?= cc
 PYTHON  ?= python3
@@ -43,7 +46,7 @@ RUNNER_SRCS := $(filter-out tests/c/test_%.c,$(wildcard tests/c/*.c))
 CJSON   := $(shell pkg-config --libs libcjson 2>/dev/null || echo -lcjson)
 CJSON_CFLAGS := $(shell pkg-config --cflags libcjson 2>/dev/null)
 
-.PHONY: all lib test test-c bench install uninstall clean demo venv deps
+.PHONY: all lib test test-c test-consumers bench install uninstall clean demo venv deps
 all: lib
 lib: $(SHLIB) $(B)/$(SONAME) $(B)/libisect.so $(STLIB)
 
@@ -116,6 +119,13 @@ test:
 	$(MAKE) --no-print-directory deps
 	$(MAKE) --no-print-directory test-c test-fortran venv fuzz-build
 	sh scripts/run_tests.sh
+
+# Tiny C and Fortran programs built against libisect the ways other projects
+# take it in: pkg-config after make install, CMake find_package and
+# FetchContent, a meson subproject, an fpm dependency (make test runs it too;
+# fpm comes from the venv).
+test-consumers: lib fortran venv
+	sh tests/install/consumers.sh
 
 # ---------------------------------------------------------------- bench
 $(B)/bench/%: bench/%.c $(STLIB)

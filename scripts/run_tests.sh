@@ -98,6 +98,8 @@ step "fortran module forms" $B/fortran/test_forms
 step "golden corpus (Fortran)" $B/fortran/corpus_runner tests/cases/flat/*.txt
 step "flat corpus export check" $PY tests/golden/export_flat.py --check
 step "installed C and Fortran examples" sh tests/install/test_installed.sh
+step "consumers: pkg-config, CMake find_package and FetchContent, meson subproject, fpm" \
+    sh tests/install/consumers.sh
 step "ABI check (abidiff)" sh tests/abi/check_abi.sh
 step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
 step "clang -Werror build" make --no-print-directory -s CC=clang B=$B/clang lib
