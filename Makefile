@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # libisect — GNU make build.  `make` builds the shared and static libraries,
 # `make demo` renders the demo pictures (the main job), `make test` runs every
 # test (C unit tests and the golden corpus, plain and under ASan+UBSan, the

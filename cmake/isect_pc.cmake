@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Run by `cmake --install` (CMakeLists.txt's install(CODE)): fills in
 # libisect/isect.pc.in for the prefix being installed to and installs the
 # result as LIBDIR/pkgconfig/isect.pc (DESTDIR is honoured by file(INSTALL)).

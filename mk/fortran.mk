@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # mk/fortran.mk — the Fortran module, its tests, the C and Fortran examples,
 # and the ABI check. Included at the end of the top-level Makefile, whose
 # variables (B, SONAME, VERSION, WARN, PYTHON, DESTDIR, PREFIX, LIBDIR,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages the build, the tests and the demo need, when
 # they are missing. Run by `make test` and `make demo` (and so by .ci/run),
 # so the README's two commands work on a fresh machine. As non-root it only

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Runs every test of the project (the Makefile's `make test` builds them
 # first) and ends with one line "N passed, N failed" summed over all of them.
 # Each step prints its own closing line; a step without counts (a check
@@ -104,6 +105,7 @@ step "ABI check (abidiff)" sh tests/abi/check_abi.sh
 step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
 step "clang -Werror build" make --no-print-directory -s CC=clang B=$B/clang lib
 step "meson build and tests" sh scripts/meson_check.sh
+step "SPDX licence headers" sh scripts/spdx_headers.sh --check
 if [ -f tests/golden/generate.py ]; then
     step "corpus regeneration check" $PY tests/golden/generate.py --check
 fi

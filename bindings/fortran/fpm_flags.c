@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fpm_flags.c — compiled by fpm only (fpm.toml: the library's source-dir is
  * bindings/fortran, where libisect-src links to libisect/src; the Makefile,

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # libisect used the ways other projects take in a library: a tiny C program
 # (and, where the route carries the Fortran module, a tiny Fortran program)
 # is built against libisect through each route of README.md, "Using libisect

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # The C and Fortran examples built against an *installed* libisect:
 #
 #   1. make install PREFIX=/usr DESTDIR=$tmp/root   (the tree a package would ship)
