@@ -1,16 +1,21 @@
+# SPDX-License-Identifier: Apache-2.0
 # libisect — GNU make build.  `make` builds the shared and static libraries,
 # `make demo` renders the demo pictures (the main job), `make test` runs every
 # test (C unit tests and the golden corpus, plain and under ASan+UBSan, the
 # Fortran and Python suites, ABI and export checks, the corpus regeneration
 # check), `make bench` the benchmarks, `make install PREFIX=... DESTDIR=...`
 # installs.
-# meson.build builds the same library and runs the same tests.
+# meson.build builds the same library and runs the same tests; CMakeLists.txt
+# builds the library alone, for CMake users. `make test-consumers` builds small
+# programs against libisect through each route of README.md, "Using libisect
+# from your project".
 
 CC      ?= cc
 PYTHON  ?= python3
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
+DOCDIR  ?= $(PREFIX)/share/doc/isect
 DESTDIR ?=
 
 VERSION := $(shell sh scripts/version.sh)
@@ -42,7 +47,7 @@ RUNNER_SRCS := $(filter-out tests/c/test_%.c,$(wildcard tests/c/*.c))
 CJSON   := $(shell pkg-config --libs libcjson 2>/dev/null || echo -lcjson)
 CJSON_CFLAGS := $(shell pkg-config --cflags libcjson 2>/dev/null)
 
-.PHONY: all lib test test-c bench install uninstall clean demo venv deps
+.PHONY: all lib test test-c test-consumers bench install uninstall clean demo venv deps
 all: lib
 lib: $(SHLIB) $(B)/$(SONAME) $(B)/libisect.so $(STLIB)
 
@@ -116,6 +121,13 @@ test:
 	$(MAKE) --no-print-directory test-c test-fortran venv fuzz-build
 	sh scripts/run_tests.sh
 
+# Tiny C and Fortran programs built against libisect the ways other projects
+# take it in: pkg-config after make install, CMake find_package and
+# FetchContent, a meson subproject, an fpm dependency (make test runs it too;
+# fpm comes from the venv).
+test-consumers: lib fortran venv
+	sh tests/install/consumers.sh
+
 # ---------------------------------------------------------------- bench
 $(B)/bench/%: bench/%.c $(STLIB)
 	@mkdir -p $(@D)
@@ -159,11 +171,14 @@ install: lib
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
 	    libisect/isect.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+	install -d $(DESTDIR)$(DOCDIR)
+	install -m 644 LICENSE NOTICE $(DESTDIR)$(DOCDIR)/
 
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/isect.h $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
 	      $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libisect.so \
-	      $(DESTDIR)$(LIBDIR)/libisect.a $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc
+	      $(DESTDIR)$(LIBDIR)/libisect.a $(DESTDIR)$(LIBDIR)/pkgconfig/isect.pc \
+	      $(DESTDIR)$(DOCDIR)/LICENSE $(DESTDIR)$(DOCDIR)/NOTICE
 
 clean:
 	rm -rf $(B)

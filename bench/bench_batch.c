@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bench_batch.c — throughput of isect_intersect_batch against the memory
  * traffic it cannot avoid.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bench_kernels.c — every analytic primitive's isect_intersect_batch against
  * the textbook loop a user would write instead.

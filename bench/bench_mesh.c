@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bench_mesh.c — libisect's mesh BVH against Embree 3 on one core.
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Benchmark of the Python package ``isect`` (a benchmark, not a test).
 
 For a sphere and a triangle at N = 1e6 rays it measures, in one process:

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Every primitive through Python against vectorised numpy (a benchmark, not a test).
 
 For each analytic primitive (the thirteen of ``bench_kernels.c``, with the same

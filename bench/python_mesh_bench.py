@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Mesh benchmark of the Python package ``isect`` (a benchmark, not a test).
 
 Closest hit of random rays on an 81920-triangle icosphere (6 subdivisions of

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The kernel benchmarks' targets in one table (the last step of ``make bench``).
 
 Reads bench/results/kernels.json (``build/bench/bench_kernels``) and

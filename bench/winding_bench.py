@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Winding numbers: isect against libigl (and trimesh's containment).
 
 For each mesh, the same points go through

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """libisect demo: two pictures rendered through the Python API (``isect``).
 
 ``demo/scene.png``

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # mk/fortran.mk — the Fortran module, its tests, the C and Fortran examples,
 # and the ABI check. Included at the end of the top-level Makefile, whose
 # variables (B, SONAME, VERSION, WARN, PYTHON, DESTDIR, PREFIX, LIBDIR,
@@ -10,8 +11,8 @@
 #   make flat-corpus    re-export tests/cases/flat/*.txt after the JSON changed
 #   make abi-baseline   rewrite libisect/abi/libisect.so.1.abi (only when an
 #                       ABI change is intended: a new release's additions)
-#   make install        also installs isect.mod, libisect_fortran.a and
-#                       isect-fortran.pc (see README.md, "Using libisect from Fortran")
+#   make install        also installs isect.mod, isect.f90, libisect_fortran.a
+#                       and isect-fortran.pc (see README.md, "Using libisect from Fortran")
 
 # GNU make's built-in FC is f77; the module is Fortran 2008.
 ifeq ($(origin FC),default)
@@ -106,7 +107,9 @@ check-fortran: test-fortran
 
 # ---------------------------------------------------------------- install
 # isect.mod goes next to isect.h, so the -I of `pkg-config --cflags isect`
-# finds it; isect-fortran.pc adds -lisect_fortran to isect's flags.
+# finds it, and isect.f90 beside it (the module's source, for a compiler
+# that cannot read gfortran's .mod); isect-fortran.pc adds -lisect_fortran to
+# isect's flags.
 install: install-fortran
 uninstall: uninstall-fortran
 
@@ -114,6 +117,7 @@ ifeq ($(HAVE_FC),yes)
 install-fortran: $(FORTRAN_LIB) $(FORTRAN_MOD)
 	install -d $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
 	install -m 644 $(FORTRAN_MOD) $(DESTDIR)$(INCLUDEDIR)/isect.mod
+	install -m 644 bindings/fortran/isect.f90 $(DESTDIR)$(INCLUDEDIR)/isect.f90
 	install -m 644 $(FORTRAN_LIB) $(DESTDIR)$(LIBDIR)/libisect_fortran.a
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
@@ -124,7 +128,8 @@ install-fortran:
 endif
 
 uninstall-fortran:
-	rm -f $(DESTDIR)$(INCLUDEDIR)/isect.mod $(DESTDIR)$(LIBDIR)/libisect_fortran.a \
+	rm -f $(DESTDIR)$(INCLUDEDIR)/isect.mod $(DESTDIR)$(INCLUDEDIR)/isect.f90 \
+	      $(DESTDIR)$(LIBDIR)/libisect_fortran.a \
 	      $(DESTDIR)$(LIBDIR)/pkgconfig/isect-fortran.pc
 
 # The Fortran runner's copy of the corpus (tests/golden/export_flat.py).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # mk/fuzz.mk — libFuzzer harnesses (tests/fuzz/), built with clang and
 # AddressSanitizer + UndefinedBehaviorSanitizer. Included from the top-level
 # Makefile, whose variables (B, WARN, LIBCFLAGS, SRCS, HDRS, RUNNER_SRCS, CJSON,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # mk/tsan.mk — the ThreadSanitizer build: the library and tests/c/test_threads.c
 # compiled with -fsanitize=thread into $(B)/tsan. Included at the end of the
 # top-level Makefile, whose variables (B, CC, LIBCFLAGS, TESTCFLAGS, SRCS, HDRS)

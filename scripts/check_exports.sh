@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # The library exports exactly the functions isect.h declares with ISECT_API:
 # nothing else (no helper leaks out of -fvisibility=hidden and the version
 # script) and nothing missing. Usage: check_exports.sh path/to/libisect.so.1

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Builds and tests with meson in build/meson (the second build system must
 # build the same library and pass the same tests as the Makefile).
 set -eu

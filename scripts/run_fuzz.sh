@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Runs one libFuzzer harness for a fixed time (make fuzz, make test).
 #
 #     sh scripts/run_fuzz.sh BUILD_FUZZ_DIR NAME SECONDS

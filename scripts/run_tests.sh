@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Runs every test of the project (the Makefile's `make test` builds them
 # first) and ends with one line "N passed, N failed" summed over all of them.
 # Each step prints its own closing line; a step without counts (a check
@@ -99,10 +100,13 @@ step "fortran module forms" $B/fortran/test_forms
 step "golden corpus (Fortran)" $B/fortran/corpus_runner tests/cases/flat/*.txt
 step "flat corpus export check" $PY tests/golden/export_flat.py --check
 step "installed C and Fortran examples" sh tests/install/test_installed.sh
+step "consumers: pkg-config, CMake find_package and FetchContent, meson subproject, fpm" \
+    sh tests/install/consumers.sh
 step "ABI check (abidiff)" sh tests/abi/check_abi.sh
 step "exported symbols" sh scripts/check_exports.sh $B/libisect.so.1
 step "clang -Werror build" make --no-print-directory -s CC=clang B=$B/clang lib
 step "meson build and tests" sh scripts/meson_check.sh
+step "SPDX licence headers" sh scripts/spdx_headers.sh --check
 if [ -f tests/golden/generate.py ]; then
     step "corpus regeneration check" $PY tests/golden/generate.py --check
 fi

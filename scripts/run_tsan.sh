@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # ThreadSanitizer runs (mk/tsan.mk builds what they run):
 #
 #   run_tsan.sh c [rays [threads]]   build/tsan/tests/test_threads (default

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Prints the version defined in libisect/include/isect.h — the one place it is
 # defined — for the Makefile and meson.build.  `version.sh` → 1.0.0,
 # `version.sh abi` → 1 (the soname number).

@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! isect.f90 — module isect: libisect's C API (libisect/include/isect.h) for
 ! Fortran 2008 through ISO_C_BINDING.
 !

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cffi build script (API, out-of-line mode) for the extension ``isect._isect``.
 
 The C sources of libisect are compiled *into* the extension module, so the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """setuptools glue: the cffi extension, the version from isect.h, and an sdist
 that carries the libisect sources along (see build_isect.py)."""
 

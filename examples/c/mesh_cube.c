@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh_cube.c — a polygon mesh: the cube [-1, 1]^3 as 6 quads, built with
  * isect_mesh_create, checked with isect_mesh_check, hit by a ray through an

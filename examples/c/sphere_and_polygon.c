@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * sphere_and_polygon.c — the first things to do with libisect from C: all
  * hits of a ray with a sphere, a concave polygon hit and missed, and an

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * transformed_ellipsoid.c — a shape descriptor (isect_shape) with an
  * object-to-world transform: an ellipsoid with radii (2, 1, 1), turned by 90

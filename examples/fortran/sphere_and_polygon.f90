@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! sphere_and_polygon.f90 — the first things to do with libisect from
 ! Fortran: all hits of a ray with a sphere, a concave polygon hit and missed,
 ! and an error status. Prints the same lines as examples/c/sphere_and_polygon.c.

@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! transformed_ellipsoid.f90 — a shape descriptor (isect_shape) with an
 ! object-to-world transform: an ellipsoid with radii (2, 1, 1), turned by 90
 ! degrees about z (its long axis now along y) and moved to (10, 0, 0). Prints

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * isect.h — libisect, ray–object intersection in double precision.
  *

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # ABI stability check of libisect.so (libabigail, Debian package abigail-tools).
 #
 #   sh tests/abi/check_abi.sh            check a fresh build against the baseline

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Accuracy harness of libisect: errors in ulps against an exact reference.
 
 Modules: ``reference`` (the golden solvers of tests/golden deciding exactly),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The accuracy contract (SPEC, revision 2) as numbers, in one place.
 
 ``T_ULPS`` and ``NORM_ULPS`` are the SPEC's; the point and normal-angle

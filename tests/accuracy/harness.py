@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Run the library, the textbook code and the exact reference on the same rays.
 
 For every ray of a class the library answers twice -- ``intersect`` (closest

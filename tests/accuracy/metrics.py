@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Error measures and their accumulation.
 
 Units (SPEC, "Accuracy contract (revision 2)"):

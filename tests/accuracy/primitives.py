@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The measured primitives: random instances at a given size and position.
 
 Each instance carries its shape twice: ``spec``, the numbers in the golden

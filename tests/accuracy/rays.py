@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The ray classes: reproducible batches of (object, rays) per primitive.
 
 Every class draws its objects and rays from a seeded numpy Generator, so a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The exact reference: the solvers of ``tests/golden`` deciding exactly.
 
 The golden solvers evaluate everything rational with ``fractions.Fraction``

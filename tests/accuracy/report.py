@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The results table: one row per (primitive, class), plain text or Markdown."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Command line: measure libisect against the exact reference and print the table.
 
     python tests/accuracy/run.py [--short | --full] [--rays N] [--primitive NAME ...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Exact distance from a reported hit point to the exact surface.
 
 For a point P (doubles, so exact rationals) and the face or part ``prim`` that

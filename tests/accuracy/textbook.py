@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Textbook double-precision intersection, vectorised over rays (numpy float64).
 
 What a first implementation from the lecture notes computes, for comparison

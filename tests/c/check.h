@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * check.h — the assertion helpers of the C unit tests. Each test program
  * includes it once, calls CHECK* as often as it likes and ends main() with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_batch.c — op "intersect" through isect_intersect_batch and
  * isect_intersect_all_batch.

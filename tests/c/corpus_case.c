@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_case.c — a corpus case object into a corpus_case; see corpus_case.h.
  */

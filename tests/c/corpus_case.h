@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_case.h — one corpus case parsed into the library's inputs and the
  * expected results (schema isect-cases/1, tests/cases/README.md).

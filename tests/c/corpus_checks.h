@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_checks.h — running one parsed case through every API path that
  * computes its answer, reporting each disagreement through case_report.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_hits.c — checks on hit buffers; see corpus_hits.h.
  */

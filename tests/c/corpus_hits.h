@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_hits.h — checks on isect_hit buffers: against the corpus's expected
  * hits (within tolerance), against another call's hits (bit for bit), the

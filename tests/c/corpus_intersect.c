@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_intersect.c — op "intersect": the type's scalar function and
  * isect_intersect, each with a large buffer, counting only (hits NULL,

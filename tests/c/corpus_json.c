@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_json.c — typed access to the corpus's JSON; see corpus_json.h.
  */

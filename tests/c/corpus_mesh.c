@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_mesh.c — mesh shapes: their arrays from the JSON, building the mesh
  * when a case runs, and op "mesh_check"; see corpus_mesh.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_mesh.h — a corpus "mesh" shape (tests/cases/README.md, "Meshes") as
  * the arrays isect_mesh_create takes, and the expected isect_mesh_report of

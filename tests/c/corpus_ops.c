@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_ops.c — the ops other than "intersect" and "mesh_check": contains,
  * the 2D polygon helpers, polygon_normal and plane_from_points.

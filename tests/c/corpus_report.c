@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_report.c — failure lines and scalar comparisons; see corpus_report.h.
  */

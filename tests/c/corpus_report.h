@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_report.h — the failure lines of one case, in the runner's format
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_runner.c — runs the golden corpus (the files in tests/cases/, schema
  * isect-cases/1, documented in tests/cases/README.md) against libisect.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_shape.c — corpus shape objects as isect_shape descriptors; see
  * corpus_shape.h.

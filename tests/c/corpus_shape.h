@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_shape.h — a corpus "shape" object as an isect_shape descriptor, and
  * the call of the type's own scalar function (isect_ray_sphere etc.) on it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_spawn.c — op "spawn": isect_spawn_ray from the first hit of the
  * primary ray, then the secondary ray (tests/cases/README.md, "spawn").

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * exact_dyadic.h — exact arithmetic for the tests' own reference answers,
  * independent of the library: every finite double is an integer times a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh_fixtures.h — closed and open test meshes built in code, shared by the
  * mesh tests and the mesh benchmark: icosphere, torus, voxel solids (cube,

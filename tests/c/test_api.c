@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_api.c — the shared layer: struct layouts, version and status text,
  * argument checking in the dispatcher, batch semantics (MISS / INVALID

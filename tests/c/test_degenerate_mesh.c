@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_degenerate_mesh.c — exactly-once on closed meshes with the
  * degeneracies real data has: the parity of the hits of every ray in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_face_exact.c — triangles, polygons and mesh faces are crossed
  * exactly when the sheared-frame test of isect.h ("Tie-breaking") says so

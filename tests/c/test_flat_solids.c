@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_flat_solids.c — unit tests of the plane, the axis-aligned box and the
  * convex polyhedron, through the public API only.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_lanes.c — batch records are bit for bit the scalar call's, at every
  * instruction set the library dispatches to.

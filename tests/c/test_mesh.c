@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_mesh.c — meshes (isect.h "meshes"): creation and every bad-input
  * class, queries against brute force over the faces, closest hit equal bit

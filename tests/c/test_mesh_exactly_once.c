@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_mesh_exactly_once.c — the headline guarantee for meshes: a ray that
  * crosses a closed surface through a shared edge or vertex is counted

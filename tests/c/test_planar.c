@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_planar.c — triangles, polygons and the planar helpers: hit records,
  * concave and self-intersecting polygons under both fill rules, Newell

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_quadrics.c — sphere, ellipsoid, finite and infinite cylinder and the
  * general quadric: hits, misses, origins behind / inside / on the surface,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_random.h — the C tests' seeded random numbers (xorshift64): the
  * same sequence on every platform and build, so a failing ray can be

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_spawn.c — isect_spawn_ray on every shape type: secondary rays never
  * find the surface they leave at t ~ 0, and never skip a close second one.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_threads.c — many threads on shared shapes and meshes give exactly the
  * single-threaded results (the contract: no global mutable state, every

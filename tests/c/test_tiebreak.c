@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_tiebreak.c — the exactly-once guarantee of isect.h's "Tie-breaking"
  * section, tested where it is hardest: rays through shared vertices and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * test_winding.c — winding numbers and the mesh containment rules
  * (isect_winding_number_batch, isect_contains with ISECT_EVEN_ODD,

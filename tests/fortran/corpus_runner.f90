@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! corpus_runner.f90 — runs the golden corpus through the Fortran module isect.
 !
 !     corpus_runner tests/cases/flat/*.txt

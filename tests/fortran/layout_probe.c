@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * layout_probe.c — what the C compiler says about isect.h, for
  * test_layout.f90: struct sizes and field offsets, the value of every

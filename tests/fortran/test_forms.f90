@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! test_forms.f90 — the module's two ways of calling each function agree:
 ! the C form (explicit counts, type(c_ptr) opts) and the Fortran form (counts
 ! from array sizes, optional opts) give the same bits, and the helpers

@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! test_layout.f90 — the module isect agrees with isect.h as the C compiler
 ! sees it (layout_probe.c):
 !   * every bind(C) type has the size and field offsets of its C struct, and

@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: Apache-2.0
 ! test_report.f90 — the pass/fail bookkeeping of the Fortran tests: one
 ! "FAIL what: detail" line per failed check, and at the end the line
 ! "N passed, N failed" that scripts/run_tests.sh sums, with exit status 1 when

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_checks.c — the invariants of fuzz_checks.h.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_checks.h — the invariants every harness asserts, as the library's
  * documentation states them (libisect/include/isect.h, README "Semantics").

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_corpus.c — libFuzzer harness: the golden-corpus reader and runner
  * (tests/c/corpus_*.c, the code of build/tests/corpus_runner) on fuzzed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_input.c — the byte layout of the harnesses' inputs; see fuzz_input.h.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_input.h — turning a libFuzzer byte string into library inputs.
  *

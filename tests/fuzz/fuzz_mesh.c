@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_mesh.c — libFuzzer harness: isect_mesh_create, isect_mesh_check and
  * the mesh queries on fuzzed arrays.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_mesh_parity.c — libFuzzer harness: the exactly-once guarantee on
  * closed meshes whose vertices are fuzzed.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_polygon2.c — libFuzzer harness: the polygon helpers
  * isect_point_in_polygon2, isect_winding_number2 (and their batch forms),

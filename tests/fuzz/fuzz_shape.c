@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_shape.c — libFuzzer harness: the shape queries on fuzzed descriptors.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_spawn.c — libFuzzer harness: isect_spawn_ray on fuzzed shapes, hits
  * and directions.

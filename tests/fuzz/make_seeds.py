@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Write the fuzz harnesses' seed corpora from the golden cases.
 
     python3 tests/fuzz/make_seeds.py tests/cases build/fuzz/seeds

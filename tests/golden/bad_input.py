@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Bad input (every error class of SPEC.md / isect.h) and degenerate geometry that
 is *not* an error (status ok, never hit).
 

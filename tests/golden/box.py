@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Closed axis-aligned box lo <= x <= hi (isect_ray_aabb): reference solver and cases.
 
 Seed (Axis-Aligned Cuboid): per axis k with v_k != 0 the slab is crossed at

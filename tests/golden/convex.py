@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Convex polyhedron (isect_ray_convex): reference solver, shared entry/exit logic, cases.
 
 The solid is the intersection of half-spaces n.x + d <= 0 (outward normals).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Cylinders: finite capped/open (isect_ray_cylinder) and infinite (isect_ray_cylinder_inf).
 
 Side (seeds: "orthogonal projection to the plane defined by C, A", and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Axis-aligned ellipsoid sum(((x - c)/R)^2) = 1 (isect_ray_ellipsoid): solver and cases.
 
 Seed (Ray-Ellipsoid, (x/a)^2 + (y/b)^2 + (z/c)^2 = 1): in the scaled frame

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Exact and high-precision numbers for the golden reference.
 
 Every input of the corpus is an IEEE double.  ``Fraction(x)`` of a double is

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Export the golden corpus tests/cases/*.json as flat text for the Fortran runner.
 
     python3 tests/golden/export_flat.py           # write tests/cases/flat/<family>.txt

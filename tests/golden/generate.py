@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Write the golden corpus tests/cases/<family>.json from the mpmath reference.
 
     python3 tests/golden/generate.py            # (re)write every file

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Meshes (isect_mesh_create + ISECT_MESH): reference solver, containment, report, cases.
 
 Hits.  A mesh is its faces, each a thin surface with the semantics of the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Rays, options, hits and cases of the golden reference (shared by all families).
 
 The library's documented output rules live here, evaluated on exact values:

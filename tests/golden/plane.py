@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Plane n.x + d = 0 (isect_ray_plane): reference solver and cases.
 
 Along the ray x = o + t v:  n.o + t (n.v) + d = 0, so

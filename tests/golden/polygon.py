@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Planar polygon (isect_ray_polygon): reference solver and cases.
 
 Plane (isect.h): Newell's normal through the vertex centroid m = (1/n) sum v_i,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """2D and polygon helpers: point_in_polygon2, winding_number2, polygon_normal,
 plane_from_points (reference and cases).
 

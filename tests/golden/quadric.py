@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """General quadric (isect_ray_quadric): reference solver and cases.
 
 Q(x) = Ax^2 + By^2 + Cz^2 + Dxy + Exz + Fyz + Gx + Hy + Iz + J, inside where Q < 0.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Dispatch: the expected result of one case (status, hits, inside, ...).
 
 Validation follows the error classes of isect.h; a case must have at most

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Cross-checks of the reference against itself (run by ``generate.py --selftest``).
 
 The corpus must not depend on one derivation only, so each solver is

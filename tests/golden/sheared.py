@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The exact inside test of triangles and polygons (isect.h, "Tie-breaking").
 
 1. The ray's sheared frame (Woop, Benthin & Wald 2013), as isect.h defines it:

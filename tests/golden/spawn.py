@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Secondary rays (isect_spawn_ray, SPEC revision 2, op "spawn"): cases.
 
 A spawn case holds a shape (and optional transform), the primary ray and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Sphere |x - c| = r (isect_ray_sphere): reference solver and cases.
 
 With f = c - o and the ray x = o + t v (seeds: A = v.v, B = -2 f.v,

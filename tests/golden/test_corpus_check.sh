@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # The golden corpus is up to date: regenerating tests/cases/*.json from the
 # mpmath reference (tests/golden/generate.py) would not change a single byte.
 # Uses the project venv when it exists (it has mpmath from requirements.txt).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Transformed shapes (isect_xform_* / isect_shape.xform): reference and cases.
 
 Seed (Transformed objects): with the object-to-world matrix M = [L | T; 0 0 0 1]

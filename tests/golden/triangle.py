@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Triangle a, b, c (isect_ray_triangle): reference solver and cases.
 
 Plane: n = (b - a) x (c - a); n = 0 is degenerate.  No eps is involved

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # The C and Fortran examples built against an *installed* libisect:
 #
 #   1. make install PREFIX=/usr DESTDIR=$tmp/root   (the tree a package would ship)
@@ -45,9 +46,9 @@ pass "make install PREFIX=/usr DESTDIR=<tmp>"
 
 abi=$(sh scripts/version.sh abi)
 version=$(sh scripts/version.sh)
-for f in include/isect.h include/isect.mod lib/libisect.so.$version lib/libisect.so.$abi \
+for f in include/isect.h include/isect.mod include/isect.f90 lib/libisect.so.$version lib/libisect.so.$abi \
          lib/libisect.so lib/libisect.a lib/libisect_fortran.a lib/pkgconfig/isect.pc \
-         lib/pkgconfig/isect-fortran.pc; do
+         lib/pkgconfig/isect-fortran.pc share/doc/isect/LICENSE share/doc/isect/NOTICE; do
     if [ -e "$root/usr/$f" ]; then pass "installed /usr/$f"; else fail "installed /usr/$f"; fi
 done
 soname=$(readelf -d "$root/usr/lib/libisect.so.$abi" 2>/dev/null | sed -n 's/.*SONAME.*\[\(.*\)\].*/\1/p')

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared settings of the pytest suite of the Python package ``isect``."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Reading the golden corpus (tests/cases/*.json, schema ``isect-cases/1``).
 
 The reading and checking of cases lives in the package (``isect._cases``, the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Test meshes built in numpy: cubes of quads, a torus, icospheres.
 
 Shared by test_mesh.py, test_embree_oracle.py and bench/python_mesh_bench.py.

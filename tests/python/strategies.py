@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Hypothesis strategies for shapes, rays and transforms, plus the small
 amount of test-side geometry the properties need (rotation matrices, plane
 sets of boxes). None of it is used by the package itself."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """libisect against the exact reference: the short accuracy run (tests/accuracy).
 
 Every (primitive, metric) pair is held to the accuracy contract (SPEC,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every class of bad input raises the documented exception.
 
 The table pairs a call with the exception class the Python API documents for

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shape.intersect packs separate origin / direction / tmin / tmax columns
 in C (``_soa_columns`` and ``pyisect_closest_soa``) instead of building a
 RAY_DTYPE array; its records must be those of ``intersect_rays`` on the

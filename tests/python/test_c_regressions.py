@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Regression tests for C library defects found by the property tests.
 
 Each test pins one minimal case of a behaviour that disagrees with isect.h;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The user case runner, ``python -m isect cases FILE.json... [--json]``."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The golden corpus (tests/cases/*.json) through the Python API.
 
 Every case of every file is one test. An ``intersect`` case is run through

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The demo renderer (demo/render.py, run by ``make demo``) at a reduced size:
 both pictures are written, non-empty, and every object of the scene shows in
 its own colour."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The Python examples of the documentation run as written."""
 
 from __future__ import annotations

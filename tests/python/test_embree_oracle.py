@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Embree (PyPI ``embreex``, float32) as an independent oracle for isect.Mesh.
 
 10^5 random rays at an 81920-triangle icosphere. Both libraries get the same

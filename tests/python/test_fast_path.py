@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The one-ray fast path of ``Shape.intersect`` (``isect._shape._closest_one``).
 
 ``shape.intersect(origin, direction)`` with one ray given as 3 plain numbers

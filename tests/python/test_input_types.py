@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Input types (issue 13, item 5): immutable shape arrays, non-numeric and
 out-of-range inputs refused with an isect exception that names the argument.
 

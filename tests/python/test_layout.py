@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The numpy dtypes mirror the C structs, and the cffi declarations follow isect.h."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """isect.Mesh: construction, bad input, the validity report, queries, threads."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Property tests (hypothesis) of the library through the Python API.
 
 Tolerances: where two computations of the same hit take different rounding

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The two corpus runners agree on malformed files (issue 13, item 6).
 
 The same files go to the C runner (build/tests/corpus_runner, built by

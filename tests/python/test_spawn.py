@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shape.spawn (isect_spawn_ray, SPEC revision 2): secondary rays through the Python API.
 
 Every shape class (meshes and transformed shapes included) spawns rays from

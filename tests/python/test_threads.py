@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """threads= gives the same bytes as one thread; shapes are safe to share."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Mesh.winding_number and the containment rules of Mesh.contains.
 
 Expected values are worked out by hand (integers of closed shells, the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The Python batch with threads, run under ThreadSanitizer by scripts/run_tsan.sh.
 
 Not a pytest module (pytest collects ``test_*.py``): it runs in a CPython that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * dispatch.h — the dispatcher over the isect_shape descriptor (shape.c) and
  * what the batch loops (batch.c) and the public entry points share with it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes.h (api) — isect_intersect_batch for the analytic shapes, LANE_W
  * rays at a time through the fast kernels (prim/ *_lanes.h), compiled once

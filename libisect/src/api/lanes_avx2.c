@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_avx2.c — the lane batch four rays at once (CPUs with AVX2 and FMA). The whole unit is compiled for
  * that instruction set by a target pragma, so no build flag is needed; it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_avx512.c — the lane batch eight rays at once (CPUs with AVX-512F). The whole unit is compiled for
  * that instruction set by a target pragma, so no build flag is needed; it

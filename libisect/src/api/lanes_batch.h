@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_batch.h — the lane batch loop, written once and compiled once per
  * instruction set: define LANE_ISA (core/lanes.h) and LANE_SUFFIX before

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_dispatch.c — which copy of the lane batch runs (see api/lanes.h):
  * the widest instruction set the CPU supports, capped by the environment

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_scalar.c — the lane batch one ray at a time (LANE_W = 1), in
  * portable C: the batch of every build without SIMD, and of every CPU

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes_sse2.c — the lane batch two rays at once (every x86-64 CPU). The whole unit is compiled for
  * that instruction set by a target pragma, so no build flag is needed; it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * scalar.c — the public per-primitive entry points isect_ray_plane ...
  * isect_ray_quadric: each packs its arguments into an isect_shape

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * shape.c — one dispatcher over the isect_shape descriptor.
  *

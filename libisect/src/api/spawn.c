@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * spawn.c — isect_spawn_ray: a ray that leaves a surface at a hit without
  * meeting that surface again at t ~ 0 (pbrt's OffsetRayOrigin, made exact).

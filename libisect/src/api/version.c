@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * version.c — what the built library says about itself, and the text of its
  * status codes.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * core.h — what every layer of the library shares: resolved options, the
  * checks every entry point makes on rays and numbers, and the affine

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ddx.h — double-double values that carry a bound on their own error, for
  * the certified paths of the quadric family (scalar code).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * dyadic_sum.c — exact sums of products of doubles at any exponent (see
  * dyadic_sum.h for the method and why each step is exact).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * dyadic_sum.h — the exact sign (and a rounded value) of a sum of products
  * of up to three doubles, whatever their exponents: for exact predicates

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * eft.h — error-free transformations and double-double ("dd") arithmetic
  * in the lane vocabulary of lanes.h, for the fast kernels.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * expansion.c — exact expansion arithmetic (see expansion.h).
  */

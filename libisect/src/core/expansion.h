@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * expansion.h — exact arithmetic on floating-point expansions, for the
  * exact paths that the fast kernels defer to (rarely: decisions within a

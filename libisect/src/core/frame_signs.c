@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * frame_signs.c — exact signs of the sheared frame (see frame_signs.h).
  *

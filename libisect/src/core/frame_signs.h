@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * frame_signs.h — the signs that decide whether a ray crosses a triangle or
  * polygon, evaluated exactly on the given doubles: the sheared-frame test of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lanes.h — LANE_W doubles at once: the one vocabulary the fast kernels
  * (prim/ *_lanes.h) are written in, so each kernel exists once and runs on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * predicates.h — exact sign predicates in the plane, and the tie-breaking
  * rule every point-in-polygon and ray/face decision of the library uses.

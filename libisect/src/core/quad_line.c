@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * quad_line.c — a line's crossings with a quadric surface: certified from
  * double-doubles, or exact (see quad_line.h).

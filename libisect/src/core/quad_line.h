@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * quad_line.h — the crossings of a line with a quadric surface, certified
  * from double-double coefficients or decided exactly, for the quadric

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ratio.c — exact decisions on t = num/den (see ratio.h).
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ratio.h — a crossing parameter t = num / den decided exactly, for the
  * exact paths of the planar primitives (a plane, a face, a slab of a box

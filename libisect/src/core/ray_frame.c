@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ray_frame.c — building the sheared frame of a ray (see ray_frame.h).
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ray_frame.h — the ray's sheared frame (Woop, Benthin & Wald, "Watertight
  * Ray/Triangle Intersection", JCGT 2013), exactly as isect.h documents it.

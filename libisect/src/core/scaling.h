@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * scaling.h — the numeric groundwork every primitive shares: power-of-two
  * scaling (exact, so numbers can be brought near 1 before anything is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * validate.c — the checks every entry point makes on what the caller passes:
  * options, rays, and runs of numbers that must be finite. Written once here

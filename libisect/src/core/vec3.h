@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * vec3.h — the small amount of 3-vector arithmetic every primitive needs.
  * Plain double[3] arrays (no struct) so data can be passed straight from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * xform.c — affine object-to-world transforms (the seeds' "transformed
  * objects"): the ray goes to object space by M^-1, the primitive is hit there,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bvh.c — binned SAH construction of the binary tree and its collapse to
  * the 8-wide nodes of bvh.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bvh.h — an 8-wide bounding-volume hierarchy over boxed items (the faces of
  * a mesh): built as a binary tree by binned SAH (Wald, "On fast

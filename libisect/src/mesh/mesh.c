@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh.c — isect_mesh_create / _destroy / _bytes: argument validation, the
  * copy of the caller's arrays, per-face data (exact degeneracy, polygon

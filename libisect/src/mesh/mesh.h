@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh.h — the mesh object and what its files share: mesh.c (creation,
  * validation, per-face data), mesh_query.c (ray queries and containment over

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh_check.c — isect_mesh_check: topology and measures of a mesh.
  *

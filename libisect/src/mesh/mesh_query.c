@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh_query.c — ray queries against a mesh through its BVH: closest hit,
  * all hits, any hit; and point containment by exact crossing parity.

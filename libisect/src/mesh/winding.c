@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * winding.c — the generalized winding number of a mesh (Jacobson, Kavan &
  * Sorkine, "Robust inside-outside segmentation using generalized winding

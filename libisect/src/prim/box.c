@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * box.c — the closed axis-aligned box lo <= x <= hi (ISECT_AABB), data =
  * lo[3], hi[3]; faces 0..5 = -x, +x, -y, +y, -z, +z.

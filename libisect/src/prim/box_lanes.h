@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * box_lanes.h — the axis-aligned box's fast kernel, LANE_W rays at once
  * (prim_lanes.h states the contract; box.c holds the scalar call, which

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * convex.c — the convex polyhedron given as the intersection of n >= 1
  * closed half-spaces a x + b y + c z + d <= 0 (ISECT_CONVEX), data =

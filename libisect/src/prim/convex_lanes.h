@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * convex_lanes.h — the convex polyhedron's fast kernel, LANE_W rays at once
  * (prim_lanes.h states the contract; convex.c holds the scalar call, which

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * cylinder.c — the finite cylinder of radius r around the segment p0-p1
  * (ISECT_CYLINDER, data = p0[3], p1[3], r; flags ISECT_CAPPED or 0) and the

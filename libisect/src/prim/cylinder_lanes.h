@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * cylinder_lanes.h — the cylinders' fast kernels, LANE_W rays at once
  * (prim_lanes.h states the contract; cylinder.c holds the exact path they

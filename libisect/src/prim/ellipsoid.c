@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ellipsoid.c — the axis-aligned ellipsoid sum(((x - c)/R)^2) = 1
  * (ISECT_ELLIPSOID, data = c[3], R[3]), a solid; prim -1.

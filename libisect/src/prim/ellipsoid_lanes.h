@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ellipsoid_lanes.h — the axis-aligned ellipsoid's fast kernel, LANE_W rays
  * at once (prim_lanes.h states the contract; ellipsoid.c holds the exact

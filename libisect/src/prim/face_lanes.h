@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * face_lanes.h — the signs of the sheared-frame test of triangles and
  * polygons (isect.h, "Tie-breaking"; core/frame_signs.h for the exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * hits.c — filling hit records and putting a kernel's hits in the order and
  * range the API promises. Kernels report every intersection of the ray's

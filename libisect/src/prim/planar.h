@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * planar.h — what triangles, polygons and mesh faces share: their planes,
  * the crossing record, the exact crossing parameters, and the polygon test

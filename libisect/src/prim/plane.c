@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * plane.c — the infinite plane n.x + d = 0 (ISECT_PLANE), data = n[3], d.
  * A thin surface: one hit or none, no containment.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * plane_lanes.h — the infinite plane's fast kernel, LANE_W rays at once
  * (prim_lanes.h states the contract; plane.c holds the exact path).

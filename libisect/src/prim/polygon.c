@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * polygon.c — planar polygons (convex, concave, self-intersecting): the
  * plane by Newell's method, the inside test as the exact winding number of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * polygon2d.c — 2D point in polygon and winding number, single and batch,
  * all through one loop over winding_edge (exact, half-open rule).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * polygon_lanes.h — a lone polygon's fast kernel, LANE_W rays at once
  * (prim_lanes.h states the contract; polygon.c holds the exact path): the

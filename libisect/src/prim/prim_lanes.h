@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * prim_lanes.h — rays and hit records in lane form (one number per lane,
  * LANE_W rays at once), as the fast kernels (prim/ *_lanes.h) take and give

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * quadric_lanes.h — the general quadric's fast kernel, LANE_W rays at once
  * (prim_lanes.h states the contract; quadric.c holds the exact path it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * slab_lanes.h — enterMax / exitMin with certified comparisons, in the lane
  * vocabulary: the bookkeeping the box's slabs and the convex polyhedron's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * sphere.c — the sphere |x - c| = r (ISECT_SPHERE, data = c[3], r), a
  * solid; prim -1.

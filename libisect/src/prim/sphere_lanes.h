@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * sphere_lanes.h — the sphere's fast kernel: plain arithmetic, then one
  * Newton step whose a-posteriori bound certifies the result, LANE_W rays at

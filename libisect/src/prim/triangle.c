@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * triangle.c — the triangle primitive, on the watertight test of
  * triangle_test.h, and what that test and the mesh share: the per-face

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * triangle_lanes.h — the crossing parameter of a triangle's plane, in the
  * lane vocabulary: plain double-double arithmetic with a forward error

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * triangle_test.h — the watertight ray/triangle test (Woop, Benthin & Wald
  * 2013) decided exactly for the given doubles, one ray at a time, as

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """isect — ray–object intersection in double precision (libisect for Python).
 
 A thin, numpy-first layer over libisect's C API, compiled into this package

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Command line: ``python -m isect cases FILE.json... [--json]``.
 
 Runs golden-case files in the corpus schema (``isect-cases/1``, documented in

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Argument coercion: Python and numpy inputs to the contiguous float64 arrays
 and C structs that libisect reads. Only marshalling happens here, no geometry.
 """

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Splitting a batch over threads.
 
 libisect's batch functions are reentrant and cffi releases the GIL around every

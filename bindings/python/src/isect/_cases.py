@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Golden cases (schema ``isect-cases/1``) run against libisect through this
 package: the engine of ``python -m isect cases FILE.json...`` and of the
 project's own corpus tests (tests/python/corpus.py imports it).

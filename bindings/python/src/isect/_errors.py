@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The exception hierarchy and the one table that maps C status codes to it.
 
 Every error the package raises for a bad argument is an :class:`IsectError`

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Polygon helpers and version queries: thin wrappers of the C functions."""
 
 from __future__ import annotations

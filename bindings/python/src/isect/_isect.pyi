@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Type stub of the compiled cffi extension ``isect._isect``.
 
 ``ffi`` is the cffi FFI instance; ``lib`` exposes the C functions and

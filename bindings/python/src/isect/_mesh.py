@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Polygon meshes: :class:`Mesh` (``ISECT_MESH``) and its :class:`MeshReport`.
 
 A :class:`Mesh` owns one ``isect_mesh`` handle made by ``isect_mesh_create``

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The shape base classes: the ``isect_shape`` descriptor and every query.
 
 A shape keeps its numbers in one read-only, contiguous float64 array; the C

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The primitive shape classes, one per C shape type.
 
 Each constructor packs its arguments into the float64 layout the C library

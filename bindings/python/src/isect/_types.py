@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """numpy dtypes that mirror the C structs, the hit kinds, and the Hit tuple.
 
 ``RAY_DTYPE`` and ``HIT_DTYPE`` are built from ``ffi.offsetof`` / ``ffi.sizeof``
