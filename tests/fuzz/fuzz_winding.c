@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_winding.c — libFuzzer harness: isect_winding_number_batch and the
  * mesh containment rules on fuzzed meshes and points.
