@@ -534,7 +534,12 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
  * Kavan & Sorkine 2013): the signed solid angle of its faces at the point
  * over 4 pi, faces oriented by the right-hand rule (w = 1 inside a closed
  * mesh whose normals point out, -1 for inward normals, 0 outside; a
- * mirroring transform negates it).
+ * mirroring transform negates it). A transformed mesh's w is that of its
+ * world-space image: under a similarity (rotation, mirror, uniform scale,
+ * translation: angles kept) computed in object space; under any other
+ * transform (a non-uniform scaling or shear changes an open surface's
+ * solid angles) by direct summation over the faces' world images, rounded
+ * once each, whatever `accuracy` is.
  *  - Closed, consistently oriented meshes: off the surface, the exact
  *    integer (the signed crossing count along +x with the exactly-once
  *    rule), whatever `accuracy` is; on a face, edge or vertex, the principal

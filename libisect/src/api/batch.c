@@ -124,21 +124,32 @@ ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double 
     /* the cluster tree where the exact integer does not apply, for a batch
      * that repays building it (its cost is a few direct sums) */
     mesh_winding_tree *tree = NULL;
-    if (!mesh_is_oriented(m) && (n >= 8 || (accuracy > 0.0 && n > 0))) {
+    if (!mesh_is_oriented(m) && (n >= 8 || (accuracy > 0.0 && n > 0))
+        && (shape->xform == NULL || xform_is_similarity(shape->xform))) {
         status = mesh_winding_tree_build(m, &tree);
         if (status != ISECT_OK)
             return status;
     }
     int orientation = shape->xform != NULL ? xform_orientation(shape->xform) : 1;
+    /* a similarity keeps solid angles: the sums run in object space;
+     * another transform bends them, and the sum runs over the faces' world
+     * images (the exact integer of a closed, oriented mesh is the same in
+     * both: a crossing count) */
+    int world = shape->xform != NULL && !xform_is_similarity(shape->xform);
     for (int64_t i = 0; i < n; i++) {
         const double *q = p + 3 * i;
         double obj[3];
+        int64_t count;
         if (shape->xform != NULL && all_finite(q, 3)) {
             xform_point_to_object(shape->xform, q, obj);
             q = obj;
         }
         if (!all_finite(q, 3))
             w[i] = NAN;
+        else if (world)
+            w[i] = mesh_is_oriented(m) && mesh_crossing_count(m, q, &count) == 0
+                 ? (double)(orientation * count)
+                 : mesh_winding_direct_world(m, shape->xform, p + 3 * i);
         else if (tree != NULL)
             w[i] = orientation * mesh_winding_far(m, tree, q, isfinite(accuracy) ? accuracy : 0.0,
                                                   NULL);

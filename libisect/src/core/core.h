@@ -63,6 +63,11 @@ int all_finite(const double *x, int64_t n);
 void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out);
 void xform_point_to_object(const isect_xform *x, const double p[3], double out[3]);
 void xform_vector_to_object(const isect_xform *x, const double v[3], double out[3]);
+void xform_point_to_world(const isect_xform *x, const double p[3], double out[3]);
+/* 1 when x's linear part is a similarity (a rotation or mirror times one
+ * scale factor, to a relative 2^-40): angles, and so solid angles, are the
+ * same in object and world space. */
+int xform_is_similarity(const isect_xform *x);
 void xform_hits_unchecked(const isect_xform *x, isect_hit *hits, int n);
 /* The sign of the determinant of x's linear part, exactly: -1 for a
  * mirroring transform (it turns a surface's orientation inside out). */

@@ -117,6 +117,27 @@ void xform_vector_to_object(const isect_xform *x, const double v[3], double out[
     affine_vector(x->inv, v, out);
 }
 
+void xform_point_to_world(const isect_xform *x, const double p[3], double out[3])
+{
+    affine_point(x->m, p, out);
+}
+
+int xform_is_similarity(const isect_xform *x)
+{
+    /* L^T L = s^2 I to a relative 2^-40: columns orthogonal and of one
+     * length (a rotation or mirror times a uniform scale) */
+    double g[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            g[i][j] = x->m[i] * x->m[j] + x->m[4 + i] * x->m[4 + j] + x->m[8 + i] * x->m[8 + j];
+    double s2 = (g[0][0] + g[1][1] + g[2][2]) / 3.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (!(fabs(g[i][j] - (i == j ? s2 : 0.0)) <= 0x1p-40 * s2))
+                return 0; /* NaN (an overflowed square) included */
+    return 1;
+}
+
 int xform_orientation(const isect_xform *x)
 {
     /* det of the rows = orient3 of the rows against the origin (orient3's

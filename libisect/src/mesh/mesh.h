@@ -123,6 +123,9 @@ int     mesh_crossing_count(const isect_mesh *m, const double p[3], int64_t *cou
  * for a closed, oriented mesh off its surface, else direct. *bound (may
  * be NULL) receives the bound of |w - exact|. */
 double  mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound);
+/* The same over the faces mapped to world space by x, at the world point q
+ * (for a transform that is not a similarity). */
+double  mesh_winding_direct_world(const isect_mesh *m, const isect_xform *x, const double q[3]);
 typedef struct mesh_winding_tree mesh_winding_tree;
 int     mesh_winding_tree_build(const isect_mesh *m, mesh_winding_tree **out);
 void    mesh_winding_tree_free(mesh_winding_tree *t);

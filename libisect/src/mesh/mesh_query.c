@@ -1447,8 +1447,16 @@ int mesh_contains(const isect_shape *s, const double p[3])
 {
     const isect_mesh *m = s->mesh;
     int orientation = s->xform != NULL ? xform_orientation(s->xform) : 1;
-    if (s->flags == ISECT_WINDING && !m->oriented)
+    if (s->flags == ISECT_WINDING && !m->oriented) {
+        if (s->xform != NULL && !xform_is_similarity(s->xform)) {
+            /* solid angles bend under this transform: summed over the
+             * faces' world images, at p's (its world point, round trip) */
+            double world[3];
+            xform_point_to_world(s->xform, p, world);
+            return mesh_winding_direct_world(m, s->xform, world) >= 0.5;
+        }
         return orientation * mesh_winding_direct(m, p, NULL) >= 0.5;
+    }
     int64_t count;
     if (mesh_crossing_count(m, p, &count))
         return 1;

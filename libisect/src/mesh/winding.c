@@ -290,6 +290,29 @@ double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound
     return winding_of(&s, bound);
 }
 
+/* Direct summation over the faces mapped to world space by x (q a world
+ * point): a transform that is not a similarity (a non-uniform scaling, a
+ * shear) changes the solid angles an open surface subtends, so its sum
+ * cannot be taken in object space. Each vertex image is rounded once (to
+ * about 2u of its coordinates), then the faces are summed as above. */
+double mesh_winding_direct_world(const isect_mesh *m, const isect_xform *x, const double q[3])
+{
+    angle_sum s = { { 0.0, 0.0 }, 0.0 };
+    for (int64_t i = 0; i < m->prim_count; i++) {
+        const mesh_prim *pr = &m->prims[i];
+        double v0[3], v1[3], v2[3];
+        xform_point_to_world(x, prim_vertex(m, pr, 0), v0);
+        xform_point_to_world(x, prim_vertex(m, pr, 1), v2);
+        for (int j = 1; j + 1 < pr->nverts; j++) {
+            double bound;
+            memcpy(v1, v2, sizeof v1);
+            xform_point_to_world(x, prim_vertex(m, pr, j + 1), v2);
+            angle_sum_add(&s, triangle_solid_angle(v0, v1, v2, q, 0, &bound), 0.0);
+        }
+    }
+    return winding_of(&s, NULL);
+}
+
 /* ----------------------------------------------------------- far field */
 
 /* A cluster: the faces below one BVH child. */
