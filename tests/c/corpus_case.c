@@ -28,6 +28,7 @@ static const name_value op_names[] = {
     { "polygon_normal", CORPUS_POLYGON_NORMAL },
     { "plane_from_points", CORPUS_PLANE_FROM_POINTS },
     { "spawn", CORPUS_SPAWN },
+    { "winding_number", CORPUS_WINDING_NUMBER },
     { NULL, 0 },
 };
 
@@ -183,7 +184,7 @@ static int tolerance_parse(const cJSON *item, corpus_tolerance *tol, cj_error *e
 {
     const cJSON *obj = object_field(item, "tol", 0, err);
     tol->t = tol->point = tol->normal = tol->uv = DEFAULT_TOLERANCE;
-    tol->volume = tol->area = DEFAULT_TOLERANCE;
+    tol->volume = tol->area = tol->winding = DEFAULT_TOLERANCE;
     if (obj == NULL)
         return cJSON_GetObjectItemCaseSensitive(item, "tol") == NULL;
     return cj_number_or(obj, "tol", "t", DEFAULT_TOLERANCE, &tol->t, err) &&
@@ -191,7 +192,8 @@ static int tolerance_parse(const cJSON *item, corpus_tolerance *tol, cj_error *e
            cj_number_or(obj, "tol", "normal", DEFAULT_TOLERANCE, &tol->normal, err) &&
            cj_number_or(obj, "tol", "uv", DEFAULT_TOLERANCE, &tol->uv, err) &&
            cj_number_or(obj, "tol", "volume", DEFAULT_TOLERANCE, &tol->volume, err) &&
-           cj_number_or(obj, "tol", "area", DEFAULT_TOLERANCE, &tol->area, err);
+           cj_number_or(obj, "tol", "area", DEFAULT_TOLERANCE, &tol->area, err) &&
+           cj_number_or(obj, "tol", "winding", DEFAULT_TOLERANCE, &tol->winding, err);
 }
 
 /* "flags" is informational here (the C runner runs every case, c-only
@@ -290,6 +292,13 @@ static int expect_parse(const cJSON *item, corpus_case *c, cj_error *err)
         return cj_vector(expect, "expect", "normal", 3, c->normal, err);
     case CORPUS_PLANE_FROM_POINTS:
         return cj_vector(expect, "expect", "plane", 4, c->plane, err);
+    case CORPUS_WINDING_NUMBER:
+        /* One w per point; the calloc'd room is never empty, so a case of
+         * no points still has a valid (unused) array. */
+        c->windings = calloc((size_t)c->points_n + 1, sizeof *c->windings);
+        if (c->windings == NULL)
+            return cj_fail(err, "out of memory");
+        return cj_vector(expect, "expect", "winding", c->points_n, c->windings, err);
     }
     return 1;
 }
@@ -331,6 +340,13 @@ static int inputs_parse(const cJSON *item, corpus_case *c, cj_error *err)
     case CORPUS_POLYGON_NORMAL:
     case CORPUS_PLANE_FROM_POINTS:
         return cj_rows(item, "", "vertices", 3, &c->vertices, &c->vertices_n, err);
+    case CORPUS_WINDING_NUMBER:
+        /* Any shape (a non-mesh is a bad-input case: E_ARG). */
+        return corpus_shape_parse(cJSON_GetObjectItemCaseSensitive(item, "shape"), &c->shape,
+                                  err) &&
+               transform_parse(item, c, err) &&
+               cj_rows(item, "", "points", 3, &c->points, &c->points_n, err) &&
+               cj_number_or(item, "", "accuracy", 0.0, &c->accuracy, err);
     }
     return 1;
 }
@@ -357,6 +373,8 @@ void corpus_case_free(corpus_case *c)
     free(c->polygon2);
     free(c->vertices);
     free(c->hits);
-    c->polygon2 = c->vertices = NULL;
+    free(c->points);
+    free(c->windings);
+    c->polygon2 = c->vertices = c->points = c->windings = NULL;
     c->hits = NULL;
 }

@@ -21,13 +21,15 @@ typedef enum corpus_op {
     CORPUS_WINDING_NUMBER2,
     CORPUS_POLYGON_NORMAL,
     CORPUS_PLANE_FROM_POINTS,
-    CORPUS_SPAWN
+    CORPUS_SPAWN,
+    CORPUS_WINDING_NUMBER
 } corpus_op;
 
 /* Relative tolerances of "tol"; each defaults to 1e-12. */
 typedef struct corpus_tolerance {
     double t, point, normal, uv;
     double volume, area; /* mesh_check */
+    double winding;      /* winding_number (0: exact) */
 } corpus_tolerance;
 
 typedef struct corpus_expected_hit {
@@ -44,7 +46,7 @@ typedef struct corpus_case {
     const char *name; /* points into the JSON document */
     corpus_op   op;
 
-    /* intersect / contains / mesh_check (only the shape) / spawn */
+    /* intersect / contains / mesh_check (only the shape) / spawn / winding_number */
     corpus_shape shape;
     int          has_transform;
     double       transform[16];
@@ -59,6 +61,9 @@ typedef struct corpus_case {
     int32_t rule;          /* point_in_polygon2 */
     double *vertices;      /* polygon_normal / plane_from_points: [vertices_n][3] */
     int     vertices_n;
+    double *points;        /* winding_number: [points_n][3] */
+    int     points_n;
+    double  accuracy;      /* winding_number; 0 when absent */
 
     /* expect */
     int                  status; /* ISECT_OK or ISECT_E_* */
@@ -67,6 +72,7 @@ typedef struct corpus_case {
     corpus_expected_hit *hits;
     int                  inside;  /* contains / point_in_polygon2 */
     int32_t              winding; /* winding_number2 */
+    double              *windings; /* winding_number: [points_n], w at each point */
     double               normal[3];
     double               plane[4];
     isect_mesh_report    report;  /* mesh_check; reserved left 0 */

@@ -8,6 +8,7 @@
  *   corpus_mesh.c       building a case's mesh; op "mesh_check"
  *   corpus_ops.c        the other ops (contains, 2D helpers, normals)
  *   corpus_spawn.c      op "spawn": isect_spawn_ray and the secondary ray
+ *   corpus_winding.c    op "winding_number": isect_winding_number_batch
  */
 #ifndef ISECT_CORPUS_CHECKS_H
 #define ISECT_CORPUS_CHECKS_H
@@ -62,5 +63,6 @@ void check_winding_number2_case(const corpus_case *c, case_report *r);
 void check_polygon_normal_case(const corpus_case *c, case_report *r);
 void check_plane_from_points_case(const corpus_case *c, case_report *r);
 void check_spawn_case(const corpus_case *c, case_report *r);
+void check_winding_number_case(const corpus_case *c, case_report *r);
 
 #endif /* ISECT_CORPUS_CHECKS_H */

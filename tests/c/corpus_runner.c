@@ -104,6 +104,9 @@ static void run_parsed_case(const corpus_case *c, case_report *r)
     case CORPUS_SPAWN:
         check_spawn_case(c, r);
         break;
+    case CORPUS_WINDING_NUMBER:
+        check_winding_number_case(c, r);
+        break;
     }
 }
 

@@ -96,6 +96,12 @@ int corpus_rule_parse(const cJSON *obj, const char *parent, const char *key, int
             *rule = ISECT_NONZERO;
             return 1;
         }
+        /* A mesh rule; a polygon given it must answer E_ARG, so it is
+         * passed like any other value rather than refused here. */
+        if (strcmp(item->valuestring, "winding") == 0) {
+            *rule = ISECT_WINDING;
+            return 1;
+        }
         return cj_fail(err, "field \"%s\": unknown rule \"%s\"", path, item->valuestring);
     }
     if (!cj_integer_value(item, path, INT32_MIN, INT32_MAX, &raw, err))
@@ -172,12 +178,18 @@ static int data_parse(const cJSON *shape, const shape_layout *layout, corpus_sha
     return 1;
 }
 
-/* A mesh's arrays; its descriptor keeps data NULL and n, flags 0, and gets
- * its mesh only when the case runs (mesh_setup). */
+/* A mesh's arrays; its descriptor keeps data NULL and n 0, and gets its
+ * mesh only when the case runs (mesh_setup). A named mesh's flags are its
+ * containment rule ("rule", evenodd when absent); a raw type with "faces"
+ * keeps flags 0, as before the rule existed. */
 static int mesh_parse(const cJSON *shape, corpus_shape *out, cj_error *err)
 {
     out->is_mesh = 1;
-    return corpus_mesh_parse(shape, &out->mesh_input, err);
+    if (!corpus_mesh_parse(shape, &out->mesh_input, err))
+        return 0;
+    if (!out->named)
+        return 1;
+    return corpus_rule_parse(shape, "shape", "rule", &out->desc.flags, err);
 }
 
 int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err)

@@ -29,7 +29,8 @@ typedef struct corpus_shape {
  * with no matching keys data is NULL. The data buffer is zero-padded so a
  * raw type that reads more numbers than its keys gave stays in bounds.
  * "mesh", and a raw type with the key "faces", read the mesh's vertices and
- * faces instead (data NULL, n and flags 0; desc.mesh is set by mesh_setup).
+ * faces instead (data NULL, n 0; desc.mesh is set by mesh_setup); a "mesh"
+ * takes its containment rule "rule" as flags, a raw type flags 0.
  * Returns 1, or 0 with *err set. */
 int corpus_shape_parse(const cJSON *shape, corpus_shape *out, cj_error *err);
 
@@ -45,8 +46,9 @@ int corpus_shape_scalar(const isect_shape *s, const isect_ray *ray, const isect_
 /* "isect_ray_sphere" etc. for a type, for messages. */
 const char *corpus_shape_scalar_name(int32_t type);
 
-/* A fill rule at obj[key]: "evenodd", "nonzero", or an integer passed
- * through unchecked (bad-input cases); ISECT_EVEN_ODD when absent. */
+/* A fill rule at obj[key]: "evenodd", "nonzero", "winding" (ISECT_WINDING,
+ * a mesh's rule), or an integer passed through unchecked (bad-input cases);
+ * ISECT_EVEN_ODD when absent. */
 int corpus_rule_parse(const cJSON *obj, const char *parent, const char *key, int32_t *rule,
                       cj_error *err);
 

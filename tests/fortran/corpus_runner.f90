@@ -25,6 +25,13 @@
 !   mesh_check isect_mesh_check: every isect_mesh_report field (the mesh as
 !              given: no transform).
 !   polygon_normal, plane_from_points: status and values.
+!   winding_number isect_winding_number_batch on all the points at once and
+!              on each point alone (the library may sum a batch of 8 points
+!              or more differently), each w within wtol; points that are not
+!              finite get NaN while the call succeeds (an E_NONFINITE case
+!              caused by its points); any other expected error fails the
+!              call and writes nothing. A mesh's containment rule (contains)
+!              is the flags of its shape line.
 !   spawn      isect_spawn_ray from the closest-hit record of the primary ray
 !              (isect_intersect_batch: the first hit, or the MISS record),
 !              with the case's direction (sdir): the status; out%dir bit for
@@ -66,7 +73,10 @@ program corpus_runner
     ! INT32_MIN, the winding of a non-finite point in batch output (as a
     ! 64-bit value: standard Fortran integers are symmetric about 0).
     integer(c_int64_t), parameter :: WINDING_INVALID = -2147483648_c_int64_t
-    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/3"
+    character(len=*), parameter :: FLAT_FORMAT = "isect-flat/4"
+    ! Version 3 files are version 4 files without its additions (op
+    ! winding_number, a mesh's rule in its shape flags): still read.
+    character(len=*), parameter :: FLAT_FORMAT_OLD = "isect-flat/3"
     ! op spawn: how far (in ulps of the hit point's largest coordinate) the
     ! spawned origin may lie from the hit point, per coordinate.
     real(c_double), parameter :: SPAWN_MAX_ULPS = 8
@@ -98,6 +108,10 @@ program corpus_runner
         real(c_double), allocatable :: polygon(:, :)    ! (2, n)
         integer(c_int) :: rule = ISECT_EVEN_ODD
         real(c_double), allocatable :: vertices(:, :)   ! (3, n)
+        real(c_double), allocatable :: points(:, :)     ! winding_number: (3, n)
+        real(c_double) :: accuracy = 0
+        real(c_double) :: tol_winding = 1.0e-12_c_double
+        real(c_double), allocatable :: windings(:)      ! winding_number: expected w (n)
         ! A mesh shape (lines mesh, mverts, mfaces, midx): the counts, the
         ! vertices, each face's index count and the indices concatenated.
         logical :: is_mesh = .false.
@@ -348,6 +362,19 @@ contains
         bytes = GUARD_BYTE
         value = transfer(bytes, value)
     end function guard_i32
+
+    function guard_f64() result(value)
+        real(c_double) :: value
+        integer(c_int8_t) :: bytes(8)
+        bytes = GUARD_BYTE
+        value = transfer(bytes, value)
+    end function guard_f64
+
+    logical function bytes_untouched_f64(values)
+        real(c_double), intent(in) :: values(:)
+        integer(c_int8_t) :: mold(1)
+        bytes_untouched_f64 = all(transfer(values, mold) == GUARD_BYTE)
+    end function bytes_untouched_f64
 
     ! ============================================================ hits
 
@@ -1028,6 +1055,78 @@ contains
             call report_near("isect_plane_from_points: plane", plane, cc%plane, cc%tol_normal)
     end subroutine check_plane_from_points_case
 
+    ! One batch call on p(3, n); want(i) is point i's w, NaN where the point
+    ! is not finite (the library writes NaN there). One guard element after
+    ! the n values must stay untouched.
+    subroutine check_winding_batch(name, p, want)
+        character(len=*), intent(in) :: name
+        real(c_double), intent(in) :: p(:, :), want(:)
+        real(c_double), allocatable :: w(:)
+        integer(c_int) :: status
+        integer :: n
+        logical :: ok
+        n = size(p, 2)
+        allocate (w(n + 1))
+        w = guard_f64()
+        status = isect_winding_number_batch(shape, p, int(n, c_int64_t), cc%accuracy, w)
+        ok = .true.
+        call report_status(name // ": status", int(status, c_int64_t), ISECT_OK, ok)
+        if (.not. ok) return
+        call report_near(name // ": w", w(1:n), want, cc%tol_winding)
+        if (.not. bytes_untouched_f64(w(n + 1:n + 1))) &
+            call fail(name // ": element past n (expected untouched, got written)")
+    end subroutine check_winding_batch
+
+    subroutine check_winding_number_case()
+        real(c_double), allocatable :: want(:), w(:)
+        integer(c_int) :: status
+        integer :: n, i
+        logical :: bad_points
+
+        if (.not. transform_setup()) return
+        n = size(cc%points, 2)
+        allocate (want(n), w(n + 1))
+        bad_points = .false.
+        do i = 1, n
+            bad_points = bad_points .or. .not. all(ieee_is_finite(cc%points(:, i)))
+        end do
+        if (cc%status == ISECT_OK) then
+            want = cc%windings
+            call check_winding_batch("isect_winding_number_batch (all " // &
+                                     itoa(int(n, c_int64_t)) // " points)", cc%points, want)
+            do i = 1, n
+                call check_winding_batch("isect_winding_number_batch (point " // &
+                                         itoa(int(i - 1, c_int64_t)) // " alone)", &
+                                         cc%points(:, i:i), want(i:i))
+            end do
+        else if (cc%status == ISECT_E_NONFINITE .and. bad_points) then
+            ! Not an error of the call: NaN at those points, a finite w
+            ! elsewhere (the values are not part of an error case).
+            status = isect_winding_number_batch(shape, cc%points, int(n, c_int64_t), &
+                                                cc%accuracy, w)
+            call report_status("isect_winding_number_batch (non-finite points: ok, NaN there)", &
+                               int(status, c_int64_t), ISECT_OK)
+            if (status == ISECT_OK) then
+                do i = 1, n
+                    if (all(ieee_is_finite(cc%points(:, i))) .neqv. ieee_is_finite(w(i))) &
+                        call fail("isect_winding_number_batch: w[" // &
+                                  itoa(int(i - 1, c_int64_t)) // "] (expected " // &
+                                  trim(merge("a finite number", "NaN            ", &
+                                             all(ieee_is_finite(cc%points(:, i))))) // &
+                                  ", got " // rtoa(w(i)) // ")")
+                end do
+            end if
+        else
+            w = guard_f64()
+            status = isect_winding_number_batch(shape, cc%points, int(n, c_int64_t), &
+                                                cc%accuracy, w)
+            call report_status("isect_winding_number_batch", int(status, c_int64_t), cc%status)
+            if (status < 0 .and. .not. bytes_untouched_f64(w)) &
+                call fail("isect_winding_number_batch: output after an error (expected " // &
+                          "untouched, got written)")
+        end if
+    end subroutine check_winding_number_case
+
     ! ============================================================ meshes
 
     ! Build the case's mesh into mesh_handle as tests/cases/README.md
@@ -1206,10 +1305,18 @@ contains
             call check_plane_from_points_case()
         case ("spawn")
             call check_spawn_case()
+        case ("winding_number")
+            call check_winding_number_case()
         case default
             call fail("unknown op " // cc%op)
         end select
     end subroutine run_op
+
+    ! A windings line with one w per point (op winding_number).
+    logical function windings_given()
+        windings_given = .false.
+        if (allocated(cc%windings)) windings_given = size(cc%windings) == size(cc%points, 2)
+    end function windings_given
 
     subroutine run_case()
         call begin_case(cc%label, cc%name)
@@ -1226,6 +1333,12 @@ contains
             call fail("malformed case: a mesh line (mverts, mfaces, midx) is missing")
         else if (cc%op == "spawn" .and. .not. cc%has_sdir) then
             call fail("malformed case: spawn without an sdir line")
+        else if (cc%op == "winding_number" .and. .not. allocated(cc%points)) then
+            call fail("malformed case: winding_number without a points line")
+        else if (cc%op == "winding_number" .and. cc%status == ISECT_OK .and. &
+                 .not. windings_given()) then
+            call fail("malformed case: winding_number expecting ok without a windings line " // &
+                      "of one w per point")
         else if (cc%op == "mesh_check" .and. .not. cc%is_mesh) then
             call fail("malformed case: mesh_check without a mesh shape")
         else if (cc%op == "mesh_check" .and. cc%status == ISECT_OK .and. &
@@ -1422,6 +1535,23 @@ contains
             apply_line = read_table(rest, 2, cc%polygon)
         case ("vertices")
             apply_line = read_table(rest, 3, cc%vertices)
+        case ("points")
+            apply_line = read_table(rest, 3, cc%points)
+        case ("accuracy")
+            apply_line = read_reals(rest, values(1:1))
+            cc%accuracy = values(1)
+        case ("wtol")
+            apply_line = read_reals(rest, values(1:1))
+            cc%tol_winding = values(1)
+        case ("windings")
+            apply_line = read_ints(rest, ints(1:1))
+            if (.not. apply_line .or. ints(1) < 0 .or. allocated(cc%windings)) then
+                apply_line = .false.
+                return
+            end if
+            allocate (cc%windings(ints(1)))
+            read (rest, *, iostat=k) ints(1), cc%windings
+            apply_line = k == 0
         case ("rule")
             apply_line = read_ints(rest, ints(1:1))
             cc%rule = int(ints(1), c_int)
@@ -1520,7 +1650,7 @@ contains
             if (.not. in_case) then
                 select case (key)
                 case ("format")
-                    header_ok = rest == FLAT_FORMAT
+                    header_ok = rest == FLAT_FORMAT .or. rest == FLAT_FORMAT_OLD
                     if (.not. header_ok) then
                         call file_fail(file, "format (expected " // FLAT_FORMAT // ", got " // &
                                        rest // "); cases not run")

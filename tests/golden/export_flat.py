@@ -13,14 +13,14 @@ JSON stays the source of truth; the flat files are committed so a Fortran-only
 runner needs no Python, and `--check` (run by the tests) fails when they no
 longer match the JSON. Pure Python 3 (no packages).
 
-Flat format `isect-flat/3`
+Flat format `isect-flat/4`
 --------------------------
 Line-oriented text. Each line is a key and its values separated by single
 spaces; a line starting with `#` is a comment. Lines have no length limit
 (the runner reads them in chunks; a mesh's lines hold all its numbers). A file is
 
     # comment lines
-    format isect-flat/2
+    format isect-flat/4
     family <family>
     cases <number of case blocks that follow>
     case ... end      (one block per case, in the JSON's order)
@@ -29,14 +29,16 @@ A case block, in this order (lines in brackets appear only when they apply):
 
     case <id> <op>                 op: intersect | contains | mesh_check |
                                    point_in_polygon2 | winding_number2 |
-                                   polygon_normal | plane_from_points | spawn
+                                   polygon_normal | plane_from_points | spawn |
+                                   winding_number
     name <text to the end of the line>
     [flags <flag> ...]             the case's flags (informational)
     [malformed <reason>]           the JSON case breaks the schema: a failure
     [skip <reason>]                a case this runner does not run yet (a shape
                                    type or op added after this export): skipped
     [shape <type> <n> <flags> <named> <has_data> <ndata>]
-                                   intersect / contains / mesh_check / spawn: isect_shape
+                                   intersect / contains / mesh_check / spawn /
+                                   winding_number: isect_shape
                                    fields as integers (type: ISECT_* value, possibly
                                    a raw bad-input value); named = 1 when the JSON
                                    names the type (then it has a scalar function,
@@ -44,8 +46,11 @@ A case block, in this order (lines in brackets appear only when they apply):
                                    raw type with no known keys, a mesh); ndata =
                                    number of doubles that follow. A mesh (type
                                    "mesh", or a raw type with "faces", as the C
-                                   runner reads it) is `shape <type> 0 0 <named> 0 0`
-                                   followed by its four mesh lines:
+                                   runner reads it) is `shape <type> 0 <flags> <named> 0 0`
+                                   (flags: a named mesh's containment rule, its
+                                   "rule" as an ISECT_* value, ISECT_EVEN_ODD when
+                                   absent; 0 for a raw type) followed by its four
+                                   mesh lines:
     [mesh <nv> <nf>]               vertex and face counts
     [mverts <x1> <y1> <z1> ... <x_nv> <y_nv> <z_nv>]
                                    the vertices (no values when nv = 0)
@@ -68,16 +73,20 @@ A case block, in this order (lines in brackets appear only when they apply):
                                    runner does): a raw type may name a type whose
                                    function reads more numbers than were given
     [transform <m1> ... <m16>]     row-major object-to-world matrix (intersect,
-                                   contains, spawn; mesh_check reports the mesh as given)
+                                   contains, spawn, winding_number; mesh_check reports
+                                   the mesh as given)
     [ray <ox> <oy> <oz> <dx> <dy> <dz> <tmin> <tmax>]            intersect; spawn: the
                                    primary ray
     [opts <flags> <eps>]           intersect; absent: pass NULL (the defaults)
     [sdir <x> <y> <z>]             spawn: the direction of the secondary ray
     [point <k> <x1> ... <xk>]      contains (k = 3), 2D ops (k = 2)
+    [points <n> <x1> <y1> <z1> ... <xn> <yn> <zn>]               winding_number
+    [accuracy <a>]                 winding_number (0 when the JSON has none)
     [polygon <n> <x1> <y1> ... <xn> <yn>]                        2D ops
     [rule <r>]                     point_in_polygon2 (integer, passed through)
     [vertices <n> <x1> <y1> <z1> ... ]       polygon_normal / plane_from_points
     tol <t> <point> <normal> <uv> <volume> <area>
+    [wtol <winding>]               winding_number: the tolerance of each w
     status <s>                     expected status (ISECT_OK or ISECT_E_*), integer
     [count <c> <listed>]           intersect, status ok: hit count; listed = 1 when
                                    the hit lines follow (else only the count is checked);
@@ -88,6 +97,7 @@ A case block, in this order (lines in brackets appear only when they apply):
                                    has_uv = 0: uv was absent and is not checked
     [inside <0|1>]                 contains / point_in_polygon2, status ok
     [winding <w>]                  winding_number2, status ok
+    [windings <n> <w1> ... <wn>]   winding_number, status ok: w at each point
     [normal <x> <y> <z>]           polygon_normal, status ok
     [plane <a> <b> <c> <d>]        plane_from_points, status ok
     [report <vertices> <edges> <faces> <boundary_edges> <nonmanifold_edges>
@@ -101,8 +111,13 @@ A case block, in this order (lines in brackets appear only when they apply):
 
 Version 2 (meshes) added the mesh lines, `report`, the op mesh_check and the
 volume and area tolerances of `tol`; version 3 (secondary rays) the op spawn
-and its `sdir` line. A runner of an older version rejects a newer file at its
-`format` line instead of misreading it.
+and its `sdir` line; version 4 (winding numbers) the op winding_number with
+its `points`, `accuracy`, `wtol` and `windings` lines, and a named mesh's
+containment rule in the flags of its `shape` line (always 0 before; "winding"
+is also a valid rule name, ISECT_WINDING). A runner of an older version
+rejects a newer file at its `format` line instead of misreading it; a version 4
+runner reads version 3 files too (they are version 4 files without the new
+lines).
 
 Numbers: every double is written as Python's repr() of the exact double (the
 shortest decimal that reads back as the same double; hex-float strings of the
@@ -122,7 +137,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-FORMAT = "isect-flat/3"
+FORMAT = "isect-flat/4"
 DEFAULT_TOLERANCE = 1e-12
 # The tolerances of `tol`, in the order of the flat `tol` line.
 TOLERANCE_KEYS = ("t", "point", "normal", "uv", "volume", "area")
@@ -175,7 +190,8 @@ class Codes:
         self.kind = {"miss": c["ISECT_MISS"], "enter": c["ISECT_ENTER"],
                      "exit": c["ISECT_EXIT"], "touch": c["ISECT_TOUCH"],
                      "invalid": c["ISECT_INVALID"]}
-        self.rule = {"evenodd": c["ISECT_EVEN_ODD"], "nonzero": c["ISECT_NONZERO"]}
+        self.rule = {"evenodd": c["ISECT_EVEN_ODD"], "nonzero": c["ISECT_NONZERO"],
+                     "winding": c["ISECT_WINDING"]}
         self.opts_flag = {"cull_back": c["ISECT_CULL_BACK"], "any_hit": c["ISECT_ANY_HIT"]}
         self.capped = c["ISECT_CAPPED"]
         # The keys of each named type in the order of its scalar function's
@@ -288,8 +304,8 @@ def shape_lines(shape, codes: Codes) -> list[str]:
         # Before the layouts (a mesh's "vertices" would pass for a
         # polygon's), as tests/c/corpus_shape.c does.
         if kind == "mesh":
-            return mesh_lines(shape, codes.mesh, 1)
-        return mesh_lines(shape, integer(kind, "shape.type"), 0)
+            return mesh_lines(shape, codes.mesh, 1, rule_value(shape, "rule", codes, "shape"))
+        return mesh_lines(shape, integer(kind, "shape.type"), 0, 0)
     if isinstance(kind, str):
         matches = [lay for lay in codes.layouts if lay[0] == kind]
         if not matches:
@@ -346,10 +362,11 @@ def mesh_index(value, where: str) -> int:
     return NOT_AN_INDEX
 
 
-def mesh_lines(shape: dict, type_value: int, named: int) -> list[str]:
-    """`shape` (data NULL, n and flags 0: the runner sets isect_shape.mesh) and
-    the four mesh lines. Face sizes are passed as they are (a face of fewer than
-    3 indices is a creation error the runner must see)."""
+def mesh_lines(shape: dict, type_value: int, named: int, flags: int) -> list[str]:
+    """`shape` (data NULL, n 0, flags the containment rule: the runner sets
+    isect_shape.mesh) and the four mesh lines. Face sizes are passed as they
+    are (a face of fewer than 3 indices is a creation error the runner must
+    see)."""
     vertices = rows(shape.get("vertices"), 3, "shape.vertices")
     faces = shape.get("faces")
     if not isinstance(faces, list):
@@ -360,7 +377,7 @@ def mesh_lines(shape: dict, type_value: int, named: int) -> list[str]:
             raise Malformed(f"shape.faces[{f}]: expected a list of indices")
         indices += [mesh_index(index, f"shape.faces[{f}][{k}]")
                     for k, index in enumerate(face)]
-    return [f"shape {type_value} 0 0 {named} 0 0",
+    return [f"shape {type_value} 0 {flags} {named} 0 0",
             f"mesh {len(vertices)} {len(faces)}",
             line("mverts", (fmt(x) for row in vertices for x in row)),
             line("mfaces", (str(len(face)) for face in faces)),
@@ -368,13 +385,13 @@ def mesh_lines(shape: dict, type_value: int, named: int) -> list[str]:
 
 
 OPS = ("intersect", "contains", "mesh_check", "point_in_polygon2", "winding_number2",
-       "polygon_normal", "plane_from_points", "spawn")
+       "polygon_normal", "plane_from_points", "spawn", "winding_number")
 
 
 def case_body(case: dict, op: str, codes: Codes) -> list[str]:
     """The lines between `name`/`flags` and `end`."""
     out: list[str] = []
-    if op in ("intersect", "contains", "mesh_check", "spawn"):
+    if op in ("intersect", "contains", "mesh_check", "spawn", "winding_number"):
         if op == "mesh_check" and not is_mesh(case.get("shape")):
             raise Malformed("mesh_check: the shape must be a mesh")
         out += shape_lines(case.get("shape"), codes)
@@ -410,6 +427,10 @@ def case_body(case: dict, op: str, codes: Codes) -> list[str]:
         out.append("point 3 " + fmts(vector(case.get("point"), 3, "point")))
     elif op == "mesh_check":
         pass                            # the mesh is all its input
+    elif op == "winding_number":
+        points = rows(case.get("points"), 3, "points")
+        out.append(line("points", [str(len(points))] + [fmt(x) for row in points for x in row]))
+        out.append("accuracy " + fmt(number(case.get("accuracy", 0.0), "accuracy")))
     elif op in ("point_in_polygon2", "winding_number2"):
         polygon = rows(case.get("polygon"), 2, "polygon")
         out.append("point 2 " + fmts(vector(case.get("point"), 2, "point")))
@@ -425,11 +446,15 @@ def case_body(case: dict, op: str, codes: Codes) -> list[str]:
         raise Malformed("tol: an object is required")
     out.append("tol " + fmts(number(tol.get(k, DEFAULT_TOLERANCE), f"tol.{k}")
                              for k in TOLERANCE_KEYS))
+    if op == "winding_number":
+        out.append("wtol " + fmt(number(tol.get("winding", DEFAULT_TOLERANCE), "tol.winding")))
+        # expect_lines needs the point count to check the length of expect.winding
+        return out + expect_lines(case.get("expect"), op, codes, len(points))
     out += expect_lines(case.get("expect"), op, codes)
     return out
 
 
-def expect_lines(expect, op: str, codes: Codes) -> list[str]:
+def expect_lines(expect, op: str, codes: Codes, npoints: int = 0) -> list[str]:
     if not isinstance(expect, dict) or expect.get("status") not in codes.status:
         raise Malformed("expect.status: missing or unknown")
     out = [f"status {codes.status[expect['status']]}"]
@@ -457,6 +482,9 @@ def expect_lines(expect, op: str, codes: Codes) -> list[str]:
         out.append(f"inside {integer(expect.get('inside'), 'expect.inside')}")
     elif op == "winding_number2":
         out.append(f"winding {integer(expect.get('winding'), 'expect.winding')}")
+    elif op == "winding_number":
+        values = vector(expect.get("winding"), npoints, "expect.winding")
+        out.append(line("windings", [str(npoints)] + [fmt(x) for x in values]))
     elif op == "mesh_check":
         report = expect.get("report")
         if not isinstance(report, dict):

@@ -39,6 +39,7 @@ import spawn  # noqa: E402
 import sphere  # noqa: E402
 import transformed  # noqa: E402
 import triangle  # noqa: E402
+import winding  # noqa: E402
 from model import CASE_KEYS, Group, check_flags  # noqa: E402
 from reference import evaluate  # noqa: E402
 
@@ -46,7 +47,7 @@ SCHEMA = "isect-cases/1"
 GENERATOR = "tests/golden/generate.py (mpmath, 80 digits)"
 CASES_DIR = HERE.parent / "cases"
 FAMILIES = [plane, sphere, box, triangle, polygon, convex, cylinder, ellipsoid, quadric, transformed,
-            polygon2d, mesh, bad_input, spawn]
+            polygon2d, mesh, bad_input, spawn, winding]
 WIDTH = 150
 
 

@@ -154,8 +154,8 @@ def origin_tol(expect: dict) -> dict:
     return dict(TIGHT)
 
 
-CASE_KEYS = ("name", "flags", "op", "shape", "transform", "ray", "dir", "point", "polygon", "rule",
-             "vertices", "opts", "expect", "tol")
+CASE_KEYS = ("name", "flags", "op", "shape", "transform", "ray", "dir", "point", "points", "accuracy",
+             "polygon", "rule", "vertices", "opts", "expect", "tol")
 
 
 @dataclass
@@ -358,6 +358,74 @@ NOTES: dict[str, str] = {
              "exact first hit point in direction dir over [0, inf), without the surface being left at "
              "t = 0; every other crossing is far from t = 0 compared with the spawn offset. tol 1e-9: "
              "the spawned origin is a few ulps off the exact point.",
+    # op winding_number and the containment rules of meshes (tests/golden/winding.py)
+    "winding-number": "op winding_number (isect_winding_number_batch, Python Mesh.winding_number): the "
+                      "generalized winding number w of the mesh at each point, (1/4pi) times the sum of the "
+                      "faces' signed solid angles, faces oriented by the right-hand rule (w = 1 inside a closed "
+                      "mesh whose faces point out); a polygon face counts as its fan (v0, vi, vi+1). Each w "
+                      "passes within tol.winding (relative to max(1, |w|)); the reference computes the solid "
+                      "angles in 80 digits (Van Oosterom & Strackee, exact determinants) and, off the surface of "
+                      "a closed oriented mesh, also the signed crossing count, exactly.",
+    "exact-integer": "A closed, consistently oriented mesh (every edge used once each way) and points off its "
+                     "surface: w is the exact integer, the signed crossing count (isect.h), whatever the "
+                     "accuracy: tol.winding = 0.",
+    "principal-value": "Points on a closed oriented mesh's faces, edges or vertices: isect.h gives the principal "
+                       "value by direct summation (a face whose plane holds the point contributes 0), e.g. 1/2 "
+                       "on a face, the interior dihedral angle over 2pi on an edge, the corner's solid angle "
+                       "over 4pi at a vertex. tol.winding is the documented error bound (see open-surface).",
+    "open-surface": "A mesh that is not closed and consistently oriented (here: faces removed): w is the direct "
+                    "sum of the solid angles, within the error bound isect.h and src/mesh/winding.c document: "
+                    "(1/4pi) sum over fan triangles of (pi E/|z| + 8 pi u) + 2u|w|, E = 10u sum_k |a_k| P_k + "
+                    "64u |a||b||c| (a = A - p, ..., P the permanents of (B - A) x (C - A)), z = den + i num of "
+                    "Van Oosterom & Strackee's formula, each term at most 4pi, 0 for a triangle whose plane holds "
+                    "the point. The reference evaluates that bound on the exact numbers (in object space) and "
+                    "rounds it up to two digits: tol.winding. Rules evenodd and nonzero refuse such a mesh "
+                    "(E_ARG); rule winding takes it.",
+    "on-edge": "A query point lies exactly on an edge of the mesh (or on a fan diagonal of a polygon face).",
+    "on-vertex": "A query point is exactly a vertex of the mesh.",
+    "crossing-ray-edge": "The library counts crossings along +x from the point (isect.h, isect_contains): for "
+                         "some points of the case that ray passes exactly through an edge or a vertex, or lies "
+                         "in a face's plane; the exactly-once rule keeps the count exact.",
+    "near-edge": "Points very near an edge or a polygon's fan diagonal (1e-9, 2^-20): the documented bound grows "
+                 "as 1/distance there (to ~1e-6), however accurate the library's refined (double-double) "
+                 "evaluation is.",
+    "fan": "A fan of triangles around an apex (a cone), or a dome of quads and triangles, open at its base; "
+           "points in the base's plane inside the rim have w = 1/2 exactly (the closed surface's principal "
+           "value).",
+    "soup": "A triangle soup: triangles that share no vertex (so no edge), overlapping or crossing; not closed, "
+            "so w is the direct sum (rule nonzero is E_ARG).",
+    "self-intersecting-mesh": "One mesh of two overlapping closed cubes: w = 2 where they overlap, so rule evenodd "
+                              "says outside there and rules nonzero and winding inside.",
+    "nested": "A cube inside a cube in one mesh, with the same orientation (w = 2 inside the inner one) or the "
+              "inner one reversed (a hollow shell: w = 0 inside it).",
+    "inward": "Faces turned inward (reversed vertex order): w = -1 inside; rule nonzero says inside (w != 0), rule "
+              "winding outside (w < 1), rule evenodd inside.",
+    "flipped-face": "A closed cube with one face's vertex order reversed: closed but not oriented, so w is the direct "
+                    "sum (2/3 at the centre) and rule nonzero is E_ARG.",
+    "nonmanifold-winding": "Three faces share one edge (a book): not closed, so rule evenodd is E_ARG; rule winding "
+                           "and winding_number take it.",
+    "far-field": "accuracy > 0: the hierarchical far-field evaluation (Barill et al. 2018), which isect.h promises "
+                 "within accuracy of the accuracy-0 value: tol.winding = accuracy plus the documented bound. A "
+                 "closed oriented mesh still gets the exact integer.",
+    "point-transform": "The mesh has an object-to-world transform and w is that of the mesh in the world "
+                       "(vertices mapped by M, faces in the same order). The transforms here (signed powers of "
+                       "two in a permutation, dyadic translations) map the points to object space exactly, so "
+                       "the library sees the exact object point and its documented bound applies.",
+    "mirror-winding": "The transform mirrors (negative determinant): the faces turn the other way by the right-hand "
+                      "rule, so w is negated (isect.h). A mirrored closed cube has w = -1 inside: rules evenodd "
+                      "and nonzero say inside, rule winding (w >= 1) outside.",
+    "library-disagrees": "KNOWN LIBRARY DISAGREEMENT, kept on purpose (reported to the lead): a non-uniform scaling "
+                         "does not preserve solid angles, so the winding number of the mesh in the world differs "
+                         "from the object-space value times the sign of det, which is what the library returns.",
+    "mesh-rule": "op contains on a mesh whose shape has a \"rule\" (isect_shape.flags of ISECT_MESH): evenodd "
+                 "(crossing parity; closed meshes, else E_ARG), nonzero (the exact integer w != 0; closed, "
+                 "consistently oriented meshes, else E_ARG) or winding (w >= 1/2, any mesh: the exact integer on "
+                 "a closed oriented mesh, so w >= 1, the direct sum elsewhere, never within four times its bound "
+                 "of 1/2 here). On a closed mesh a point on a face, edge or vertex is inside under every rule. "
+                 "\"winding\" is a mesh rule only (a polygon with it is E_ARG).",
+    "rule-evenodd": "Mesh rule evenodd (ISECT_EVEN_ODD).",
+    "rule-nonzero": "Mesh rule nonzero (ISECT_NONZERO).",
+    "rule-winding": "Mesh rule winding (ISECT_WINDING).",
 }
 
 

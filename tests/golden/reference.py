@@ -25,6 +25,7 @@ import quadric
 import sphere
 import transformed
 import triangle
+import winding
 from exact import DesignError, cmp, dot, mp, norm2, point_on_ray, q, qv, to_double
 from model import INF, Ctx, EPS_DEFAULT, XRay, finish, hit_json
 
@@ -201,7 +202,11 @@ def evaluate(c: dict) -> dict:
         return evaluate_spawn(c)
     if op in ("point_in_polygon2", "winding_number2", "polygon_normal", "plane_from_points"):
         return polygon2d.evaluate(c)
+    if op == "winding_number":
+        return winding.evaluate_winding(c)      # also sets c["tol"] (the documented bound)
     shape = c["shape"]
+    if op == "contains" and shape.get("type") == "mesh" and ("rule" in shape or "transform" in c):
+        return winding.evaluate_contains(c)
     if op == "mesh_check":
         status = one_status(shape_status(shape), c["name"])
         return {"status": status} if status else {"status": "ok", "report": mesh.report(shape)}

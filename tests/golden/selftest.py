@@ -24,7 +24,12 @@ numeric perturbation:
    closed mesh an odd number of times exactly when they start inside;
 8. op spawn: the hits of every spawn case of the corpus (from the exact hit
    point, the surface left dropped at t = 0) equal those of an ordinary ray
-   from the hit point moved 2^-40 along dir, over [0, inf).
+   from the hit point moved 2^-40 along dir, over [0, inf);
+9. winding numbers: a triangle's solid angle by Van Oosterom & Strackee vs
+   Girard's spherical excess (the three dihedral angles at the point) on
+   random triangles and points; and on the grid solids, at points k/4 + 1/8
+   (off the surface), the solid-angle sum and the signed crossing count both
+   equal the cells' indicator (and its negation with every face reversed).
 """
 from __future__ import annotations
 
@@ -315,6 +320,49 @@ def check_spawn() -> int:
     return done
 
 
+def _girard(A, B, C, p) -> mpmath.mpf:
+    """Solid angle of triangle A, B, C at p as the spherical excess alpha + beta + gamma - pi
+    of its projection on the unit sphere (sign: det[a b c])."""
+    a, b, c = (tuple(mp(x) for x in sub(v, p)) for v in (A, B, C))
+
+    def angle(u, v, w):                 # at u, between the great circles to v and to w
+        n1, n2 = cross(u, v), cross(u, w)
+        return mpmath.acos(dot(n1, n2) / mpmath.sqrt(dot(n1, n1) * dot(n2, n2)))
+    det = dot(sub(A, p), cross(sub(B, p), sub(C, p)))
+    excess = angle(a, b, c) + angle(b, c, a) + angle(c, a, b) - mpmath.pi
+    return excess if det > 0 else -excess
+
+
+def check_winding(rng: random.Random, n: int = 150) -> int:
+    import winding
+    done = 0
+    for _ in range(n):
+        A, B, C, p = (qv([_dy(rng, -4, 4) for _ in range(3)]) for _ in range(4))
+        if norm2(cross(sub(B, A), sub(C, A))) == 0 or dot(sub(A, p), cross(sub(B, p), sub(C, p))) == 0:
+            continue                # degenerate, or p in the plane (0 by both)
+        vos, gir = winding.triangle_angle(A, B, C, p), _girard(A, B, C, p)
+        if abs(vos - gir) > mpmath.mpf(10) ** -50:
+            raise AssertionError(f"selftest solid angle: {A} {B} {C} at {p}: {vos} != {gir}")
+        done += 1
+    for w, h, holes in ((1, 1, []), (3, 3, [(1, 1)]), (5, 3, [(1, 1), (3, 1)])):
+        shape = mesh.grid_solid(w, h, holes)
+        cells = [(x, y) for y in range(h) for x in range(w) if (x, y) not in holes]
+        faces = shape["faces"]
+        for sign, fs in ((1, faces), (-1, [f[::-1] for f in faces])):
+            vs = winding.vertices(shape, None)
+            for _ in range(n // 3):
+                p = tuple(Fraction(rng.randint(-2, 4 * w + 2), 4) + Fraction(1, 8) for _ in range(3))
+                if winding.on_surface(vs, fs, p):
+                    continue
+                cell_in = 0 <= p[2] <= 1 and any(x <= p[0] <= x + 1 and y <= p[1] <= y + 1 for x, y in cells)
+                want = sign * int(cell_in)
+                if winding.signed_crossings(vs, fs, p) != want or \
+                        abs(winding.generalized(vs, fs, p) - want) > mpmath.mpf(10) ** -40:
+                    raise AssertionError(f"selftest winding: {p} in cells {cells}, sign {sign}")
+                done += 1
+    return done
+
+
 def run() -> None:
     rng = random.Random(20240611)
     counts = {
@@ -324,5 +372,6 @@ def run() -> None:
         "symbolic vs explicit perturbation": check_perturbation(rng),
         "meshes": check_meshes(rng),
         "spawn": check_spawn(),
+        "winding numbers": check_winding(rng),
     }
     print("selftest ok: " + ", ".join(f"{k} {v}" for k, v in counts.items()))

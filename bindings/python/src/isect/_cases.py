@@ -14,8 +14,12 @@ the op); a ``mesh_check`` case compares every field of :meth:`Mesh.check`'s
 report. A ``spawn`` case intersects its primary ray (``intersect``: the closest
 hit, or the MISS record), spawns the secondary ray with :meth:`Shape.spawn`,
 checks its direction, ``tmin``, ``tmax`` and origin (within 8 ulps of the hit
-point), and compares that ray's hits like an ``intersect`` case's. Cases flagged
-``c-only`` cannot be expressed through the Python API and are skipped.
+point), and compares that ray's hits like an ``intersect`` case's. A
+``winding_number`` case calls :meth:`Mesh.winding_number` on all its points at
+once and on each point alone (the library may sum a batch differently), each
+value within ``tol.winding``; a ``contains`` case on a mesh passes the shape's
+``rule`` to :meth:`Mesh.contains`. Cases flagged ``c-only`` cannot be expressed
+through the Python API and are skipped.
 
 A structural problem of a file or case (a missing key, a number that is not
 one, an unknown op, shape type, kind, status or flag) is a
@@ -83,6 +87,7 @@ OPS = (
     "polygon_normal",
     "plane_from_points",
     "spawn",
+    "winding_number",
 )
 SHAPE_TYPES = (
     "plane",
@@ -193,9 +198,12 @@ def _field(spec: dict[str, Any], key: str, where: str) -> Any:
 
 
 def _rule_value(value: Any, where: str) -> Any:
-    """A fill rule: "evenodd", "nonzero" or an integer (passed through)."""
-    if isinstance(value, str) and value not in ("evenodd", "nonzero"):
-        raise CaseFormatError(where, f"unknown rule {value!r} (evenodd, nonzero or an integer)")
+    """A fill rule: "evenodd", "nonzero", "winding" (a mesh's rule; a polygon
+    refuses it) or an integer (passed through)."""
+    if isinstance(value, str) and value not in ("evenodd", "nonzero", "winding"):
+        raise CaseFormatError(
+            where, f"unknown rule {value!r} (evenodd, nonzero, winding or an integer)"
+        )
     if not isinstance(value, (str, int)):
         raise CaseFormatError(where, f"{value!r} is not a rule")
     return value
@@ -293,7 +301,7 @@ def close(actual: float, expected: float, tol: float) -> bool:
 
 def tolerances(case: dict[str, Any]) -> dict[str, float]:
     """The case's tolerances with the defaults filled in."""
-    tol = {key: DEFAULT_TOL for key in ("t", "point", "normal", "uv", *REPORT_MEASURES)}
+    tol = {key: DEFAULT_TOL for key in ("t", "point", "normal", "uv", *REPORT_MEASURES, "winding")}
     given = case.get("tol", {})
     if not isinstance(given, dict):
         raise CaseFormatError("tol", "expected a JSON object")
@@ -565,7 +573,36 @@ def _contains(case: dict[str, Any]) -> bool:
     if not isinstance(shape, Solid):
         # Thin surfaces have no contains() in Python; C answers E_ARG.
         raise InvalidArgumentError("thin surfaces have no inside")
-    return bool(shape.contains(num(need(case, "point"), "point")))
+    point = num(need(case, "point"), "point")
+    if isinstance(shape, Mesh):
+        # The mesh's containment rule (isect_shape.flags in C).
+        rule = _rule_value(case["shape"].get("rule", "evenodd"), "shape.rule")
+        return bool(shape.contains(point, rule=rule))
+    return bool(shape.contains(point))
+
+
+def _winding_number(case: dict[str, Any]) -> dict[str, Any]:
+    """``Mesh.winding_number`` of all the points at once (the result), and of
+    each point alone, which must meet the same tolerance."""
+    shape = case_shape(case)
+    if not isinstance(shape, Mesh):
+        # Only meshes have the method in Python; C answers E_ARG.
+        raise InvalidArgumentError("only meshes have a generalized winding number")
+    points = num(need(case, "points"), "points")
+    accuracy = num(case.get("accuracy", 0.0), "accuracy")
+    batch = shape.winding_number(np.array(points, dtype=np.float64).reshape(-1, 3), accuracy)
+    got = [float(w) for w in batch]
+    expect = case.get("expect", {})
+    if expect.get("status") == "ok":
+        want = num(need(expect, "winding", "expect"), "expect.winding")
+        tol = tolerances(case)["winding"]
+        for i, (p, w) in enumerate(zip(points, want)):
+            alone = float(shape.winding_number(p, accuracy))
+            if not close(alone, w, tol):
+                failure = CaseFailure(f"point {i} alone: expected {w!r}, actual {alone!r}")
+                failure.actual = {"status": "ok", "winding": got}  # type: ignore[attr-defined]
+                raise failure
+    return {"winding": got}
 
 
 def _mesh_check(case: dict[str, Any]) -> dict[str, Any]:
@@ -597,6 +634,7 @@ OP_CALLS: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
     },
     "polygon_normal": lambda c: {"normal": polygon_normal(_arg(c, "vertices")).tolist()},
     "plane_from_points": lambda c: {"plane": plane_from_points(_arg(c, "vertices")).tolist()},
+    "winding_number": _winding_number,
 }
 
 
