@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_winding.c — op "winding_number": isect_winding_number_batch on the
  * case's points (tests/cases/README.md, "Expectations").

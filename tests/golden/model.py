@@ -414,9 +414,6 @@ NOTES: dict[str, str] = {
     "mirror-winding": "The transform mirrors (negative determinant): the faces turn the other way by the right-hand "
                       "rule, so w is negated (isect.h). A mirrored closed cube has w = -1 inside: rules evenodd "
                       "and nonzero say inside, rule winding (w >= 1) outside.",
-    "library-disagrees": "KNOWN LIBRARY DISAGREEMENT, kept on purpose (reported to the lead): a non-uniform scaling "
-                         "does not preserve solid angles, so the winding number of the mesh in the world differs "
-                         "from the object-space value times the sign of det, which is what the library returns.",
     "mesh-rule": "op contains on a mesh whose shape has a \"rule\" (isect_shape.flags of ISECT_MESH): evenodd "
                  "(crossing parity; closed meshes, else E_ARG), nonzero (the exact integer w != 0; closed, "
                  "consistently oriented meshes, else E_ARG) or winding (w >= 1/2, any mesh: the exact integer on "
