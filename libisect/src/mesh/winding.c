@@ -223,12 +223,15 @@ static double triangle_solid_angle(const double A[3], const double B[3], const d
     double e_den = 64.0 * WINDING_U * la * lb * lc + WINDING_TINY;
     /* num and den are forms of degree 3 in the coordinates, so Omega is
      * unchanged when all four points are scaled by one power of two. Where
-     * the triple products overflowed (an error bound not finite: beyond
-     * ~2^341) or |a||b||c| fell toward underflow (all within 2^-300 of q),
+     * the triple products overflowed (num, den or a bound not finite:
+     * beyond ~2^341) or |a||b||c| fell toward underflow (all within 2^-300
+     * of q),
      * the four points are scaled to a largest coordinate near 1 (exact, but
      * for bits of coordinates 2^1000 below the largest) and evaluated again;
      * the test on the result costs the common case nothing measurable. */
-    if (!(e_num + e_den <= 0x1p1000 && la * lb * lc >= 0x1p-900)) {
+    double lll = la * lb * lc;
+    if (!(e_num + e_den <= 0x1p1000 && fabs(num) + fabs(den) + lll <= 0x1p1000
+          && lll >= 0x1p-900)) {
         double m = fmax_nan(fmax_nan(max_abs3(A), max_abs3(B)), fmax_nan(max_abs3(C), max_abs3(q)));
         int e = pow2_exponent(m);
         if (m > 0.0 && (e > 8 || e < -8)) {
