@@ -566,8 +566,10 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
  *    is already fast, so this pays only for points far from big meshes.
  *    Both build a cluster tree per call (~1.5 KiB per BVH node and ~100
  *    bytes per face, freed before returning).
- * A non-finite point gets w = NaN. ISECT_OK; ISECT_E_ARG for a non-mesh
- * shape, NULL p or w with n > 0, n < 0, accuracy negative or NaN;
+ * A non-finite point gets w = NaN; accuracy = +INFINITY counts as 0 (no
+ * error target at all would leave nothing to compute). ISECT_OK;
+ * ISECT_E_ARG for a non-mesh shape, NULL p or w with n > 0, n < 0,
+ * accuracy negative or NaN;
  * ISECT_E_NOMEM (nothing written) when the cluster tree cannot be built. */
 ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double *p, int64_t n,
                                          double accuracy, double *w);
