@@ -324,11 +324,16 @@ contains
 
     ! ============================================================ guards
 
+    ! n bytes of the guard pattern, to transfer into a value of any type
+    pure function guard_bytes(n) result(bytes)
+        integer, intent(in) :: n
+        integer(c_int8_t) :: bytes(n)
+        bytes = GUARD_BYTE
+    end function guard_bytes
+
     function guard_hit() result(hit)
         type(isect_hit) :: hit
-        integer(c_int8_t) :: bytes(80)
-        bytes = GUARD_BYTE
-        hit = transfer(bytes, hit)
+        hit = transfer(guard_bytes(80), hit)
     end function guard_hit
 
     logical function hits_untouched(hits)
@@ -351,23 +356,17 @@ contains
 
     function guard_i64() result(value)
         integer(c_int64_t) :: value
-        integer(c_int8_t) :: bytes(8)
-        bytes = GUARD_BYTE
-        value = transfer(bytes, value)
+        value = transfer(guard_bytes(8), value)
     end function guard_i64
 
     function guard_i32() result(value)
         integer(c_int32_t) :: value
-        integer(c_int8_t) :: bytes(4)
-        bytes = GUARD_BYTE
-        value = transfer(bytes, value)
+        value = transfer(guard_bytes(4), value)
     end function guard_i32
 
     function guard_f64() result(value)
         real(c_double) :: value
-        integer(c_int8_t) :: bytes(8)
-        bytes = GUARD_BYTE
-        value = transfer(bytes, value)
+        value = transfer(guard_bytes(8), value)
     end function guard_f64
 
     logical function bytes_untouched_f64(values)

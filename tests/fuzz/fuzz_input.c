@@ -220,9 +220,16 @@ void fuzz_shape_free(fuzz_shape *s)
 
 int fuzz_shape_wide(const fuzz_shape *s, const isect_ray *rays, int n)
 {
+    return fuzz_shape_wide_with(s, rays, n, NULL, 0);
+}
+
+int fuzz_shape_wide_with(const fuzz_shape *s, const isect_ray *rays, int n, const double *extra,
+                         size_t nextra)
+{
     fuzz_range r;
     int i;
     fuzz_range_init(&r);
+    fuzz_range_add(&r, extra, nextra);
     if (s->data != NULL)
         fuzz_range_add(&r, s->data, fuzz_shape_data_count(s->desc.type, s->desc.n));
     if (s->desc.xform != NULL)

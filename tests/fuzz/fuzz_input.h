@@ -64,6 +64,10 @@ void fuzz_shape_free(fuzz_shape *s);
 /* 1 when the shape's numbers, its transform and the rays span more than
  * 2^FUZZ_MAX_SPREAD (fuzz_checks.h: the open defects at such ranges). */
 int fuzz_shape_wide(const fuzz_shape *s, const isect_ray *rays, int n);
+/* The same with nextra more numbers in the range (a mesh's coordinates,
+ * which its descriptor does not carry in data). */
+int fuzz_shape_wide_with(const fuzz_shape *s, const isect_ray *rays, int n, const double *extra,
+                         size_t nextra);
 
 /* Options: NULL, or an isect_opts of a fuzzed size in a heap block of
  * exactly the bytes that size covers (at least the size field, at most the

@@ -239,30 +239,34 @@ int shape_point_inside(const shape_family *f, const isect_shape *s, const double
     return f->contains(s, q);
 }
 
+/* fn (a side hook) at the object-space image of the world point (is_point)
+ * or direction v, or ISECT_E_NONFINITE if the transform takes it out of
+ * the finite doubles. */
+static int object_side(const isect_shape *s, const double v[3], int is_point, int32_t prim,
+                       int (*fn)(const isect_shape *, const double *, int32_t))
+{
+    if (s->xform == NULL)
+        return fn(s, v, prim);
+    double q[3];
+    if (is_point)
+        xform_point_to_object(s->xform, v, q);
+    else
+        xform_vector_to_object(s->xform, v, q);
+    if (!all_finite(q, 3))
+        return ISECT_E_NONFINITE;
+    return fn(s, q, prim);
+}
+
 int shape_point_side(const shape_family *f, const isect_shape *s, const double p[3],
                      int32_t prim)
 {
-    if (s->xform == NULL)
-        return f->side(s, p, prim);
-    double q[3];
-    xform_point_to_object(s->xform, p, q);
-    if (!all_finite(q, 3))
-        return ISECT_E_NONFINITE;
-    return f->side(s, q, prim);
+    return object_side(s, p, 1, prim, f->side);
 }
 
 int shape_direction_side(const shape_family *f, const isect_shape *s, const double d[3],
                          int32_t prim)
 {
-    if (f->tangent_side == NULL)
-        return SIDE_CURVED;
-    if (s->xform == NULL)
-        return f->tangent_side(s, d, prim);
-    double q[3];
-    xform_vector_to_object(s->xform, d, q);
-    if (!all_finite(q, 3))
-        return ISECT_E_NONFINITE;
-    return f->tangent_side(s, q, prim);
+    return f->tangent_side == NULL ? SIDE_CURVED : object_side(s, d, 0, prim, f->tangent_side);
 }
 
 int shape_prim_valid(const isect_shape *s, int32_t prim)
