@@ -96,10 +96,23 @@ ISECT_API int isect_xform_init(isect_xform *x, const double m[16])
     return ISECT_OK;
 }
 
+/* A world point to object space: the inverse's linear part applied to
+ * p - T (T the transform's translation), not inv p + inv's translation:
+ * the two agree in exact arithmetic, but a small object placed far away
+ * (T ~ 1e6, scale 1e-3) near a ray origin makes inv p and -inv T each ~1e9
+ * and their sum ~1, losing 1e-7 of it; p - T is exact there (Sterbenz) or
+ * rounded once relative to its own size. Each coordinate is ((a0 r0 + a1
+ * r1) + a2 r2), r = p - T, in that order (lane_ray_xform matches it). */
+static void inverse_point(const isect_xform *x, const double p[3], double out[3])
+{
+    const double r[3] = { p[0] - x->m[3], p[1] - x->m[7], p[2] - x->m[11] };
+    affine_vector(x->inv, r, out);
+}
+
 void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *out)
 {
     double org[3], dir[3];
-    affine_point(x->inv, in->org, org);
+    inverse_point(x, in->org, org);
     affine_vector(x->inv, in->dir, dir);
     v3_copy(out->org, org);
     v3_copy(out->dir, dir);
@@ -109,7 +122,7 @@ void xform_ray_unchecked(const isect_xform *x, const isect_ray *in, isect_ray *o
 
 void xform_point_to_object(const isect_xform *x, const double p[3], double out[3])
 {
-    affine_point(x->inv, p, out);
+    inverse_point(x, p, out);
 }
 
 void xform_vector_to_object(const isect_xform *x, const double v[3], double out[3])

@@ -82,16 +82,17 @@ static ALWAYS_INLINE vm lane_ray_valid(const lane_ray *lr)
 
 /* The object-space rays of world-space rays under x, bit for bit as
  * xform_ray_unchecked (core/xform.c) computes them: each coordinate
- * ((a0 p0 + a1 p1) + a2 p2) (+ a3 for the origin), in that order. */
+ * ((a0 r0 + a1 r1) + a2 r2), in that order, with r = org - T for the
+ * origin (T the translation of x->m) and r = dir for the direction. */
 static ALWAYS_INLINE void lane_ray_xform(const isect_xform *x, lane_ray *lr)
 {
     const double *a = x->inv;
-    vd org[3], dir[3];
+    vd org[3], dir[3], rel[3];
+    for (int k = 0; k < 3; k++)
+        rel[k] = vd_sub(lr->org[k], vd_set1(x->m[4 * k + 3]));
     for (int i = 0; i < 3; i++) {
         vd a0 = vd_set1(a[4 * i]), a1 = vd_set1(a[4 * i + 1]), a2 = vd_set1(a[4 * i + 2]);
-        org[i] = vd_add(vd_add(vd_add(vd_mul(a0, lr->org[0]), vd_mul(a1, lr->org[1])),
-                               vd_mul(a2, lr->org[2])),
-                        vd_set1(a[4 * i + 3]));
+        org[i] = vd_add(vd_add(vd_mul(a0, rel[0]), vd_mul(a1, rel[1])), vd_mul(a2, rel[2]));
         dir[i] = vd_add(vd_add(vd_mul(a0, lr->dir[0]), vd_mul(a1, lr->dir[1])),
                         vd_mul(a2, lr->dir[2]));
     }
