@@ -20,7 +20,8 @@ Queries: ``shape.intersect`` (closest hit per ray, batch, ``HIT_DTYPE``),
 
 Helpers: :func:`polygon_normal`, :func:`plane_from_points`,
 :func:`point_in_polygon`, :func:`winding_number`, :func:`version`,
-:func:`abi_version`.
+:func:`abi_version`, :func:`default_threads` (the thread count of a batch
+call's default ``threads=None``: every core this process may run on).
 
 Errors: :class:`IsectError` and its subclasses :class:`InvalidArgumentError`,
 :class:`NonFiniteError`, :class:`DegenerateError` (all three also
@@ -36,6 +37,7 @@ Example:
 
 from __future__ import annotations
 
+from ._batch import default_threads
 from ._errors import (
     DegenerateError,
     InvalidArgumentError,
@@ -96,6 +98,7 @@ __all__ = [
     "Sphere",
     "Triangle",
     "abi_version",
+    "default_threads",
     "plane_from_points",
     "point_in_polygon",
     "polygon_normal",

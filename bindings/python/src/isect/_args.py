@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from ._batch import default_threads
 from ._errors import invalid, nonfinite
 from ._isect import ffi, lib
 from ._types import RAY_DTYPE
@@ -160,9 +161,11 @@ def as_rule(rule: Rule) -> int:
 
 
 def as_threads(threads: Any) -> int:
-    """Number of threads for a batch: None means 1."""
+    """Number of threads for a batch: None means every core this process may
+    run on (:func:`isect.default_threads`); 1 keeps the batch on the calling
+    thread."""
     if threads is None:
-        return 1
+        return default_threads()
     n = as_int(threads, "threads")
     if n < 1:
         raise invalid(f"threads: expected None or an integer >= 1, got {n}")

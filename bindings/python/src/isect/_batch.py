@@ -3,11 +3,18 @@
 
 libisect's batch functions are reentrant and cffi releases the GIL around every
 C call, so chunks of one batch run truly in parallel. Each ray's result depends
-on that ray alone, so any split gives the same bytes as one call.
+on that ray alone, so any split gives the same bytes as one call. (The one
+batch whose per-element evaluation depends on the batch size, the generalized
+winding number, switches method below 8 points; chunks are never smaller than
+``MIN_CHUNK`` unless the whole batch is, so no split changes a result.)
+
+``threads=None`` means every core this process may run on
+(:func:`default_threads`).
 """
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -21,6 +28,20 @@ MIN_CHUNK = 4096
 _pool: ThreadPoolExecutor | None = None
 _pool_size = 0
 _pool_lock = threading.Lock()
+
+
+def default_threads() -> int:
+    """The number of threads a batch call uses when ``threads=None``: the
+    cores this process may run on (``len(os.sched_getaffinity(0))`` where the
+    platform has it, so a CPU mask or a container's cpuset is respected;
+    ``os.cpu_count()`` elsewhere), at least 1."""
+    getaffinity = getattr(os, "sched_getaffinity", None)
+    if getaffinity is not None:
+        try:
+            return max(1, len(getaffinity(0)))
+        except OSError:  # pragma: no cover - a platform that has it but refuses
+            pass
+    return max(1, os.cpu_count() or 1)
 
 
 def _executor(workers: int) -> ThreadPoolExecutor:

@@ -258,7 +258,8 @@ class Mesh(Solid):
                 non-manifold, soups; exact on closed oriented meshes, where
                 it means w >= 1). On a closed mesh, points on the surface are
                 inside.
-            threads: split the batch over this many threads.
+            threads: split the batch over this many threads; None (the
+                default): every core; the result is the same for every value.
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
@@ -306,7 +307,8 @@ class Mesh(Solid):
                 2013). > 0: a second-order far field for distant clusters,
                 within ``accuracy`` of that (a proven bound).
             threads: split the batch over this many threads (each builds its
-                own cluster tree for accuracy > 0).
+                own cluster tree); None (the default): every core; the result
+                is the same for every value.
 
         Returns:
             A float64 array of shape (...), or a float for a single (3,) point;

@@ -339,8 +339,10 @@ class Shape:
             cull_back: drop EXIT hits of thin surfaces (``ISECT_CULL_BACK``).
             any_hit: accept any hit (``ISECT_ANY_HIT``; occlusion queries).
             threads: split the batch over this many threads (the GIL is
-                released during the C calls); the result is byte-identical
-                to ``threads=None``.
+                released during the C calls); None (the default): every core
+                this process may run on (:func:`isect.default_threads`); 1:
+                on the calling thread. The result is byte-identical for every
+                value.
             errors: ``"raise"`` raises for the first bad ray (NaN/Inf, zero
                 direction, NaN tmin/tmax), naming its flat index;
                 ``"mark"`` returns bad rays as kind INVALID with t = NaN.
@@ -558,7 +560,8 @@ class Shape:
                 unit length. Hits and directions broadcast against each other
                 (one hit with many directions, or one direction for many hits).
             threads: split a large batch over this many threads (the GIL is
-                released); the result is the same.
+                released); None (the default): every core; the result is the
+                same for every value.
 
         Returns:
             A ``RAY_DTYPE`` array of the broadcast shape, or a single
@@ -744,7 +747,8 @@ class Solid(Shape):
 
         Args:
             points: shape (..., 3).
-            threads: split the batch over this many threads.
+            threads: split the batch over this many threads; None (the
+                default): every core; the result is the same for every value.
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
