@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _batch
+from . import _batch, _progress
 from ._args import ArrayLike, as_points, as_rows, as_threads
 from ._errors import InvalidArgumentError, check, error_for, invalid
 from ._isect import ffi, lib
@@ -244,7 +244,12 @@ class Mesh(Solid):
         return MeshReport._from_c(report)
 
     def contains(  # type: ignore[override]
-        self, points: ArrayLike, *, rule: str = "evenodd", threads: int | None = None
+        self,
+        points: ArrayLike,
+        *,
+        rule: str = "evenodd",
+        threads: int | None = None,
+        progress: bool = False,
     ) -> Any:
         """Whether each point lies inside, by a containment rule (``isect_contains_batch``).
 
@@ -260,6 +265,8 @@ class Mesh(Solid):
                 inside.
             threads: split the batch over this many threads; None (the
                 default): every core; the result is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
@@ -278,7 +285,7 @@ class Mesh(Solid):
         c = ffi.new("isect_shape *", self._c[0])
         c.flags = flags
         try:
-            return self._contains(c, points, threads, name)
+            return self._contains(c, points, threads, name, progress)
         except InvalidArgumentError:
             if rule == "winding":
                 raise
@@ -287,7 +294,12 @@ class Mesh(Solid):
                           "rule='winding' works for any mesh") from None
 
     def winding_number(
-        self, points: ArrayLike, accuracy: float | None = None, *, threads: int | None = None
+        self,
+        points: ArrayLike,
+        accuracy: float | None = None,
+        *,
+        threads: int | None = None,
+        progress: bool = False,
     ) -> npt.NDArray[np.float64] | float:
         """The generalized winding number at each point (``isect_winding_number_batch``).
 
@@ -309,6 +321,8 @@ class Mesh(Solid):
             threads: split the batch over this many threads (each builds its
                 own cluster tree); None (the default): every core; the result
                 is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A float64 array of shape (...), or a float for a single (3,) point;
@@ -341,7 +355,9 @@ class Mesh(Solid):
             """One chunk of the batch: the C call over [lo, hi)."""
             return int(lib.isect_winding_number_batch(c, pp + 3 * lo, hi - lo, acc, wp + lo))
 
-        for status in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "point")
+        for status in _batch.run(work, n, nthreads, report):
             check(status, name)
         bad = np.isnan(w)
         if bad.any():

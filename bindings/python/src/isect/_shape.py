@@ -23,7 +23,7 @@ from typing import Any, ClassVar, TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from . import _batch
+from . import _batch, _progress
 from ._args import (
     ArrayLike,
     Vector3,
@@ -324,6 +324,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> Any:
         """Closest hit of each ray (``isect_intersect_batch``).
 
@@ -346,6 +347,9 @@ class Shape:
             errors: ``"raise"`` raises for the first bad ray (NaN/Inf, zero
                 direction, NaN tmin/tmax), naming its flat index;
                 ``"mark"`` returns bad rays as kind INVALID with t = NaN.
+            progress: show a progress bar (tqdm if installed, else a
+                percentage on standard error) while the batch runs; the
+                result is the same.
 
         Returns:
             A ``HIT_DTYPE`` array of the broadcast batch shape, or a single
@@ -363,16 +367,19 @@ class Shape:
             and threads is None
             and type(errors) is str
             and errors == "raise"
+            and progress is False
         ):
             record = _closest_one(self._c, origins, directions, tmin, tmax)
             if record is not None:
                 return record
         soa = _soa_columns(origins, directions, tmin, tmax)
         if soa is not None:
-            hits, shape = self._closest_soa(soa, eps, cull_back, any_hit, threads, errors)
+            hits, shape = self._closest_soa(soa, eps, cull_back, any_hit, threads, errors,
+                                            progress)
         else:
             rays, shape = make_rays(origins, directions, tmin, tmax)
-            hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
+            hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect",
+                                 progress)
         return hits.reshape(shape)[()] if shape == () else hits.reshape(shape)
 
     def intersect_rays(
@@ -384,6 +391,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> npt.NDArray[np.void]:
         """Closest hit of each ray of a ``RAY_DTYPE`` array, without copying it.
 
@@ -392,7 +400,8 @@ class Shape:
         and result as for :meth:`intersect`; the result has ``rays.shape``.
         """
         flat, shape = as_ray_array(rays)
-        hits = self._closest(flat, eps, cull_back, any_hit, threads, errors, "intersect_rays")
+        hits = self._closest(flat, eps, cull_back, any_hit, threads, errors, "intersect_rays",
+                             progress)
         return hits.reshape(shape)
 
     def intersect_all(
@@ -474,6 +483,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.void]]:
         """Every hit of every ray, CSR style (``isect_intersect_all_batch``).
 
@@ -511,7 +521,7 @@ class Shape:
                 )
             return total, offsets, hits[: max(total, 0)]
 
-        parts = _batch.run(work, n, nthreads)
+        parts = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for total, _, _ in parts:
             check(total, name)
         if len(parts) == 1:
@@ -541,6 +551,7 @@ class Shape:
         directions: ArrayLike,
         *,
         threads: int | None = None,
+        progress: bool = False,
     ) -> Any:
         """Secondary rays leaving this shape's surface at hits (``isect_spawn_ray``).
 
@@ -562,6 +573,8 @@ class Shape:
             threads: split a large batch over this many threads (the GIL is
                 released); None (the default): every core; the result is the
                 same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`intersect`).
 
         Returns:
             A ``RAY_DTYPE`` array of the broadcast shape, or a single
@@ -611,7 +624,9 @@ class Shape:
             )
             return int(status), (lo + int(bad[0]) if status < 0 else -1)
 
-        for status, index in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "ray")
+        for status, index in _batch.run(work, n, nthreads, report):
             if status < 0:
                 d = dflat[index * dir_step:index * dir_step + 3]
                 bad_dir = not np.isfinite(d).all() or not d.any()
@@ -630,6 +645,7 @@ class Shape:
         threads: int | None,
         errors: str,
         method: str,
+        progress: bool = False,
     ) -> npt.NDArray[np.void]:
         """Run ``isect_intersect_batch`` over a flat contiguous ray array."""
         name = f"{type(self).__name__}.{method}"
@@ -648,7 +664,7 @@ class Shape:
             status = lib.pyisect_closest(c, rp + lo, hi - lo, opts, hp + lo, bad)
             return int(status), (lo + int(bad[0]) if bad[0] >= 0 else -1)
 
-        results = _batch.run(work, n, nthreads)
+        results = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for status, _ in results:
             check(status, name)
         if raising:
@@ -666,6 +682,7 @@ class Shape:
         any_hit: bool,
         threads: int | None,
         errors: str,
+        progress: bool = False,
     ) -> tuple[npt.NDArray[np.void], tuple[int, ...]]:
         """``intersect`` over separate columns (``_soa_columns``), packed in C."""
         name = f"{type(self).__name__}.intersect"
@@ -688,7 +705,7 @@ class Shape:
                 lo_step, hp_ + a * hi_step, hi_step, b - a, opts, out + a, bad)
             return int(status), (a + int(bad[0]) if bad[0] >= 0 else -1)
 
-        results = _batch.run(work, n, nthreads)
+        results = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for status, _ in results:
             check(status, name)
         if raising:
@@ -742,13 +759,17 @@ class Solid(Shape):
 
     __slots__ = ()
 
-    def contains(self, points: ArrayLike, *, threads: int | None = None) -> Any:
+    def contains(
+        self, points: ArrayLike, *, threads: int | None = None, progress: bool = False
+    ) -> Any:
         """Whether each point lies in the closed solid (``isect_contains_batch``).
 
         Args:
             points: shape (..., 3).
             threads: split the batch over this many threads; None (the
                 default): every core; the result is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
@@ -758,9 +779,12 @@ class Solid(Shape):
             InvalidArgumentError: points not of shape (..., 3); an open
                 (uncapped) cylinder, which is a thin surface.
         """
-        return self._contains(self._c, points, threads, f"{type(self).__name__}.contains")
+        return self._contains(self._c, points, threads, f"{type(self).__name__}.contains",
+                              progress)
 
-    def _contains(self, c: Any, points: ArrayLike, threads: int | None, name: str) -> Any:
+    def _contains(
+        self, c: Any, points: ArrayLike, threads: int | None, name: str, progress: bool = False
+    ) -> Any:
         """``isect_contains_batch`` with descriptor ``c`` (this shape's, or a
         mesh's with another containment rule)."""
         pts = as_points(points, 3, "points")
@@ -775,7 +799,9 @@ class Solid(Shape):
             """One chunk of the batch: the C call over [lo, hi)."""
             return int(lib.isect_contains_batch(c, pp + 3 * lo, hi - lo, ip + lo))
 
-        for status in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "point")
+        for status in _batch.run(work, n, nthreads, report):
             check(status, name)
         bad = inside == _INVALID
         if bad.any():
