@@ -20,15 +20,23 @@ import numpy.typing as npt
 
 from . import _batch, _progress
 from ._args import ArrayLike, as_points, as_rows, as_threads
-from ._errors import InvalidArgumentError, check, error_for, invalid
+from ._errors import (
+    InvalidArgumentError,
+    check,
+    error_for,
+    invalid,
+    nonfinite_element,
+    value_text,
+)
 from ._isect import ffi, lib
-from ._shape import Solid, frozen, readonly_view
+from ._shape import Solid, frozen, point_problem, readonly_view
 
 #: Faces: an (F, k) integer array (k = 3: triangles; k > 3: polygons of k
 #: vertices each) or a sequence of index sequences (polygons of any sizes).
 Faces = npt.ArrayLike | Sequence[Sequence[int]]
 
 _INT32_MAX = np.iinfo(np.int32).max
+_E_ARG = int(lib.ISECT_E_ARG)
 
 
 @dataclasses.dataclass(frozen=True, slots=True)
@@ -83,19 +91,19 @@ class MeshReport:
         return cls(**values)
 
 
-def _as_indices(a: npt.NDArray[Any], name: str) -> npt.NDArray[np.int32]:
-    """Integer vertex indices as int32 (an index beyond int32 is out of range anyway)."""
+def _as_indices(a: npt.NDArray[Any], name: str) -> npt.NDArray[Any]:
+    """``a`` if it holds integers (any integer dtype; the range is checked
+    against the vertex count later), else an InvalidArgumentError."""
     if a.size and a.dtype.kind not in "iu":
         raise invalid(f"{name}: vertex indices must be integers, got dtype {a.dtype}")
-    if a.size and (a.min() < 0 or a.max() > _INT32_MAX):
-        raise invalid(f"{name}: vertex index out of range (min {a.min()}, max {a.max()})")
-    return np.ascontiguousarray(a, dtype=np.int32)
+    return a
 
 
 def _as_faces(
     faces: Faces,
-) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.int64] | None, int]:
-    """Flat indices, CSR offsets (None for a triangle array) and the face count."""
+) -> tuple[npt.NDArray[Any], npt.NDArray[np.int64] | None, int]:
+    """Flat integer indices (not yet range-checked), CSR offsets (None for a
+    triangle array) and the face count."""
     try:
         a = np.asarray(faces)
     except ValueError:  # ragged: numpy refuses an inhomogeneous nested sequence
@@ -115,13 +123,47 @@ def _as_faces(
         polys = [p if p.size else p.astype(np.int64) for p in polys]
     except (TypeError, ValueError):
         raise invalid("faces: expected an (F, k) array or a sequence of index sequences") from None
-    if any(p.ndim != 1 for p in polys):
-        raise invalid("faces: each face must be a flat sequence of vertex indices")
+    for f, p in enumerate(polys):
+        if p.ndim != 1:
+            raise invalid(f"faces[{f}]: expected a flat sequence of vertex indices, got an "
+                          f"array of shape {p.shape}")
     counts = np.fromiter((p.size for p in polys), dtype=np.int64, count=len(polys))
     offsets = np.zeros(len(polys) + 1, dtype=np.int64)
     np.cumsum(counts, out=offsets[1:])
     flat = np.concatenate(polys) if polys else np.zeros(0, dtype=np.int32)
     return _as_indices(flat, "faces"), offsets, len(polys)
+
+
+def _check_mesh_args(verts: npt.NDArray[np.float64], flat: npt.NDArray[Any],
+                     offsets: npt.NDArray[np.int64] | None, nf: int) -> None:
+    """Raise for what ``isect_mesh_create`` refuses, in its order (counts,
+    face sizes, indices, then the vertices' values), naming the element and
+    its value: ``faces[3] has 2 vertices``, ``faces[12][1] = 99 is outside
+    [0, 40)``, ``vertices[5][2] = inf is not finite``."""
+    nv = verts.shape[0]
+    if nv > _INT32_MAX:
+        raise error_for(_E_ARG, "Mesh", detail=f"vertices: {nv} vertices (at most 2^31 - 1)")
+    if nf > _INT32_MAX:
+        raise error_for(_E_ARG, "Mesh", detail=f"faces: {nf} faces (at most 2^31 - 1)")
+    if offsets is not None and nf:
+        sizes = np.diff(offsets)
+        small = sizes < 3
+        if small.any():
+            f = int(small.argmax())
+            raise error_for(_E_ARG, "Mesh", detail=(
+                f"faces[{f}] has {int(sizes[f])} vertices (a face needs at least 3)"))
+    if flat.size:
+        bad = (flat < 0) | (flat >= nv)
+        if bad.any():
+            i = int(bad.argmax())
+            f = i // 3 if offsets is None else int(np.searchsorted(offsets, i, side="right")) - 1
+            j = i - (3 * f if offsets is None else int(offsets[f]))
+            raise error_for(_E_ARG, "Mesh", detail=(
+                f"faces[{f}][{j}] = {value_text(flat[i])} is outside [0, {nv}) (the vertex "
+                "indices)"))
+    detail = nonfinite_element(verts, "vertices")
+    if detail is not None:
+        raise error_for(int(lib.ISECT_E_NONFINITE), "Mesh", detail=detail)
 
 
 class Mesh(Solid):
@@ -164,18 +206,9 @@ class Mesh(Solid):
             OutOfMemoryError: the C library could not allocate the mesh.
         """
         verts = as_rows(vertices, 3, "vertices")
-        idx, offsets, nf = _as_faces(faces)
-        if idx.size and idx.max() >= verts.shape[0]:
-            raise invalid(
-                f"faces: vertex index {int(idx.max())} out of range for "
-                f"{verts.shape[0]} vertices"
-            )
-        if offsets is not None and nf and np.diff(offsets).min() < 3:
-            f = int(np.diff(offsets).argmin())
-            raise invalid(f"faces: face {f} has {int(offsets[f + 1] - offsets[f])} vertices "
-                          "(at least 3)")
-        if offsets is None and idx.size != 3 * nf:  # pragma: no cover - by construction
-            raise invalid("faces: triangle indices are not 3 per face")
+        flat, offsets, nf = _as_faces(faces)
+        _check_mesh_args(verts, flat, offsets, nf)
+        idx = np.ascontiguousarray(flat, dtype=np.int32)  # every index is in [0, V)
         out = ffi.new("isect_mesh **")
         check(
             lib.isect_mesh_create(
@@ -198,6 +231,13 @@ class Mesh(Solid):
     def _geometry(self) -> tuple[Any, Any]:
         """A mesh descriptor has data NULL and the handle as ``mesh``."""
         return ffi.NULL, self._handle
+
+    def _validate(self) -> None:
+        """Nothing: the input was checked before ``isect_mesh_create``."""
+
+    def _prim_count(self) -> int:
+        """Hit prims are face indices."""
+        return self.n_faces
 
     # ----------------------------------------------------------- properties
 
@@ -363,7 +403,7 @@ class Mesh(Solid):
         if bad.any():
             index = int(bad.argmax())
             raise error_for(int(lib.ISECT_E_NONFINITE), name, index=index, item="point",
-                            arg="points")
+                            arg="points", detail=point_problem(flat[index]))
         return float(w[0]) if shape == () else w.reshape(shape)
 
     # ------------------------------------------------------------ internals

@@ -40,9 +40,10 @@ from ._args import (
     make_rays,
     ray_columns,
     ray_culprit,
+    ray_problem,
     raise_on_bad,
 )
-from ._errors import IsectError, check, error_for, invalid
+from ._errors import IsectError, check, error_for, invalid, nonfinite_element, value_text
 from ._isect import ffi, lib
 from ._types import HIT_DTYPE, KIND_BY_VALUE, RAY_DTYPE, Hit
 
@@ -52,6 +53,7 @@ S = TypeVar("S", bound="Shape")
 T = TypeVar("T", bound=np.generic)
 
 _INVALID = int(lib.ISECT_INVALID)
+_HIT_KINDS = (int(lib.ISECT_ENTER), int(lib.ISECT_EXIT), int(lib.ISECT_TOUCH))
 # struct layouts of one isect_hit / isect_ray, for single-ray queries; they hold
 # only if the C structs are packed in field order (checked below).
 _HIT_STRUCT = struct.Struct("=9d2i")  # t, point[3], normal[3], uv[2], prim, kind
@@ -211,7 +213,54 @@ class Shape:
         self._flags = flags
         self._matrix = None
         self._xform = ffi.NULL
+        self._validate()
         self._describe()
+
+    def _validate(self) -> None:
+        """Raise for what the C check of the type refuses, in the order it
+        checks, naming the element and its value (``radius = -1.0 is
+        negative``, ``center[1] = nan is not finite``): the counts and flags
+        (:meth:`_check_counts`), then NaN and infinity, then the type's rules
+        for values (:meth:`_check_values`). The C library validates the
+        numbers again (:meth:`_describe`); it is the judge, this only names."""
+        context = type(self).__name__
+        detail = self._check_counts()
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=detail)
+        for name, _ in self._layout:
+            detail = nonfinite_element(self._part(name), name)
+            if detail is not None:
+                raise error_for(int(lib.ISECT_E_NONFINITE), context, detail=detail)
+        detail = self._check_values()
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=detail)
+
+    def _check_counts(self) -> str | None:
+        """What is wrong with the shape's counts or flags (a polygon of 2
+        vertices, an unknown rule), or None."""
+        return None
+
+    def _check_values(self) -> str | None:
+        """What is wrong with the shape's (finite) numbers (a negative
+        radius, lo > hi), or None."""
+        return None
+
+    #: Numbers per row of a "the rest" part of ``_layout`` (count 0): 3 for
+    #: vertices, 4 for planes.
+    _row: ClassVar[int] = 3
+
+    def _part(self, name: str) -> npt.NDArray[np.float64]:
+        """The numbers of the constructor argument ``name`` (``_layout``): a
+        0-d array for one number, (k,) for a vector, (rows, _row) for the rest."""
+        flat = self._data.reshape(-1)
+        at = 0
+        for part, count in self._layout:
+            if part == name:
+                if count == 0:
+                    return flat[at:].reshape(-1, self._row)
+                return flat[at] if count == 1 else flat[at:at + count]  # type: ignore[return-value]
+            at += count
+        raise KeyError(name)  # pragma: no cover - a name of _layout
 
     def _describe(self) -> None:
         """(Re)build the C descriptor and let libisect validate it."""
@@ -296,14 +345,24 @@ class Shape:
             DegenerateError: a singular linear part.
         """
         m = as_matrix4(matrix)
+        context = f"{type(self).__name__}.transformed"
+        # isect_xform_init's checks, in its order, naming the element.
+        detail = nonfinite_element(m, "matrix")
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_NONFINITE), context, detail=detail)
+        if m[3].tolist() != [0.0, 0.0, 0.0, 1.0]:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=(
+                f"matrix[3] = {value_text(m[3])} is not [0.0, 0.0, 0.0, 1.0] (the last row "
+                "of an affine object-to-world matrix)"))
         if self._matrix is not None:
             m = m @ self._matrix
         xform = ffi.new("isect_xform *")
-        check(
-            lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
-            f"{type(self).__name__}.transformed",
-            "matrix",
-        )
+        status = lib.isect_xform_init(xform, ffi.from_buffer("double[]", m))
+        if status == lib.ISECT_E_DEGENERATE:
+            raise error_for(status, context, detail=(
+                f"matrix: the linear part {value_text(m[:3, :3])} is singular (the determinant "
+                "of its rows scaled to unit length is at most 2^-40 in magnitude)"))
+        check(status, context, "matrix")
         new = copy.copy(self)
         new._matrix = frozen(m)
         new._xform = xform
@@ -464,7 +523,9 @@ class Shape:
         if n < 0:
             org, dirn, lo, hi = ray.org, ray.dir, ray.tmin, ray.tmax
             culprit = ray_culprit(org, dirn, lo, hi, ("origin", "direction", "tmin", "tmax"))
-            raise error_for(n, f"{type(self).__name__}.intersect_all", arg=culprit)
+            detail = ray_problem(org, dirn, lo, hi)  # names the argument and its value
+            raise error_for(n, f"{type(self).__name__}.intersect_all",
+                            arg=None if detail else culprit, detail=detail)
         out = []
         for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
             t, px, py, pz, nx, ny, nz, u, v, prim, kind = _unpack_hit(hit_bytes, offset)
@@ -629,10 +690,40 @@ class Shape:
         for status, index in _batch.run(work, n, nthreads, report):
             if status < 0:
                 d = dflat[index * dir_step:index * dir_step + 3]
-                bad_dir = not np.isfinite(d).all() or not d.any()
-                raise error_for(status, name, index=index, item="hit",
-                                arg="directions" if bad_dir else "hits")
+                arg, detail = self._spawn_problem(hflat[index * hit_step], d)
+                raise error_for(status, name, index=index, item="hit", arg=arg, detail=detail)
         return out.reshape(shape)[()] if shape == () else out.reshape(shape)
+
+    def _spawn_problem(self, hit: Any, d: npt.NDArray[np.float64]) -> tuple[str, str]:
+        """The argument and what is wrong with a row that :meth:`spawn`
+        refused, with its values, by the checks of ``isect_spawn_ray`` in
+        their order."""
+        kind, prim = int(hit["kind"]), int(hit["prim"])
+        point, normal = hit["point"], hit["normal"]
+        if kind not in _HIT_KINDS:
+            what = _KINDS[kind].name if 0 <= kind < len(_KINDS) else "not a kind"
+            return "hits", (f"kind = {kind} ({what}) is not a hit: ENTER, EXIT or TOUCH (a batch "
+                            "writes MISS for a ray that hit nothing, INVALID for a bad ray)")
+        faces = self._prim_count()
+        if faces is not None and not 0 <= prim < faces:
+            return "hits", f"prim = {prim} is outside [0, {faces}) (the mesh's faces)"
+        for field, values in (("point", point), ("normal", normal)):
+            if not np.isfinite(values).all():
+                return "hits", f"{field} = {value_text(values)} is not finite"
+        if not np.isfinite(d).all():
+            return "directions", f"direction = {value_text(d)} is not finite"
+        if not d.any():
+            return "directions", f"direction = {value_text(d)} is zero"
+        if not normal.any():
+            return "hits", f"normal = {value_text(normal)} is zero (not the record of a hit)"
+        return "hits", (f"no offset of point = {value_text(point)} along its normal leaves the "
+                        f"surface in direction {value_text(d)} (a point not near the surface, a "
+                        "degenerate shape, or a direction running inward along another face "
+                        "through the edge or corner the hit lies on)")
+
+    def _prim_count(self) -> int | None:
+        """The number of valid hit prims (a mesh's faces), None if any is valid."""
+        return None
 
     # ------------------------------------------------------------ internals
 
@@ -717,7 +808,8 @@ class Shape:
                                    lo[index * lo_step], hi[index * hi_step])
                 rp = ffi.from_buffer("isect_ray[]", one)
                 status = lib.isect_intersect(c, rp, opts, ffi.NULL, 0)
-                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS))
+                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS),
+                                  _ray_detail(rp[0]))
         return hits, shape
 
     def _raise_bad_ray(
@@ -726,7 +818,8 @@ class Shape:
         """Raise the error the scalar call reports for the batch's bad ray,
         naming which of ``args`` (origins, directions, tmin, tmax) holds it."""
         status = lib.isect_intersect(self._c, rp + index, opts, ffi.NULL, 0)
-        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS))
+        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS),
+                          _ray_detail(rp[index]))
 
     def _repr_fields(self) -> str:
         """The constructor arguments, for repr()."""
@@ -759,6 +852,10 @@ class Solid(Shape):
 
     __slots__ = ()
 
+    def _contains_refusal(self) -> str | None:
+        """Why this shape has no inside after all (an open cylinder), or None."""
+        return None
+
     def contains(
         self, points: ArrayLike, *, threads: int | None = None, progress: bool = False
     ) -> Any:
@@ -787,6 +884,9 @@ class Solid(Shape):
     ) -> Any:
         """``isect_contains_batch`` with descriptor ``c`` (this shape's, or a
         mesh's with another containment rule)."""
+        refusal = self._contains_refusal()
+        if refusal is not None:
+            raise error_for(int(lib.ISECT_E_ARG), name, detail=refusal)
         pts = as_points(points, 3, "points")
         shape = pts.shape[:-1]
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -807,7 +907,7 @@ class Solid(Shape):
         if bad.any():
             index = int(bad.argmax())
             raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point",
-                              "points")
+                              "points", point_problem(flat[index]))
         result = inside.view(np.bool_).reshape(shape)
         return bool(result) if shape == () else result
 
@@ -854,19 +954,33 @@ def _ray_arg(ray: Any, args: Sequence[str]) -> str:
     return ray_culprit(ray.org, ray.dir, ray.tmin, ray.tmax, args)
 
 
+def point_problem(point: npt.NDArray[np.float64]) -> str | None:
+    """What is wrong with a point a batch refused: its value when not finite;
+    None otherwise (finite, but its image under a transform is not)."""
+    if np.isfinite(point).all():
+        return None
+    return f"{value_text(point)} is not finite"
+
+
+def _ray_detail(ray: Any) -> str | None:
+    """What is wrong with the bad ``isect_ray`` ``ray``, with its values."""
+    return ray_problem(ray.org, ray.dir, ray.tmin, ray.tmax)
+
+
 def raise_bad_element(
-    status: int, name: str, index: int, item: str, arg: str | None = None
+    status: int, name: str, index: int, item: str, arg: str | None = None,
+    detail: str | None = None,
 ) -> None:
     """Raise for element ``index`` that a batch call marked INVALID, with the
     error the matching scalar call reports for it (``status``), naming the
-    argument ``arg`` that holds it."""
+    argument ``arg`` that holds it and, in ``detail``, the value."""
     if status >= 0:
         raise IsectError(
             f"{name}: {item} {index} was marked INVALID by the batch call, "
             "but the scalar call accepts it",
             index=index,
         )
-    raise error_for(status, name, index=index, item=item, arg=arg)
+    raise error_for(status, name, index=index, item=item, arg=arg, detail=detail)
 
 
 def _rebuild(
