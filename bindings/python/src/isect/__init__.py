@@ -53,7 +53,7 @@ from ._helpers import (
     version,
     winding_number,
 )
-from ._mesh import Mesh, MeshReport
+from ._mesh import Mesh, MeshLike, MeshReport
 from ._shape import Shape, Solid
 from ._shapes import (
     Box,
@@ -86,6 +86,7 @@ __all__ = [
     "InfiniteCylinder",
     "InvalidArgumentError",
     "Mesh",
+    "MeshLike",
     "MeshReport",
     "IsectError",
     "NonFiniteError",

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 import numpy.typing as npt
@@ -30,11 +30,46 @@ from ._errors import (
 )
 from ._isect import ffi, lib
 from ._shape import Solid, frozen, point_problem, readonly_view
+from ._triangulate import triangulate
+
+if TYPE_CHECKING:  # pragma: no cover - trimesh is optional, imported by to_trimesh
+    import trimesh
 
 #: Faces: an (F, k) integer array (k = 3: triangles; k > 3: polygons of k
 #: vertices each) or a sequence of index sequences (polygons of any sizes).
 Faces = npt.ArrayLike | Sequence[Sequence[int]]
 
+
+@runtime_checkable
+class MeshLike(Protocol):
+    """What :class:`Mesh` takes in one argument: an object with ``vertices``
+    ((V, 3) numbers) and ``faces`` (as the ``faces`` argument) attributes, such
+    as a ``trimesh.Trimesh``."""
+
+    @property
+    def vertices(self) -> Any:
+        """(V, 3) vertex positions."""
+
+    @property
+    def faces(self) -> Any:
+        """Faces, as :class:`Mesh` takes them."""
+
+
+def _mesh_arrays(vertices: Any, faces: Any) -> tuple[Any, Any]:
+    """The (vertices, faces) arrays of Mesh's arguments: as given, or read
+    from a mesh object's ``vertices`` and ``faces`` attributes when faces is
+    omitted."""
+    is_object = hasattr(vertices, "vertices") and hasattr(vertices, "faces")
+    if faces is None:
+        if not is_object:
+            raise invalid("faces: missing; pass Mesh(vertices, faces), or Mesh(mesh) with an "
+                          "object that has vertices and faces attributes (a trimesh.Trimesh), "
+                          f"not {type(vertices).__name__}")
+        return vertices.vertices, vertices.faces
+    if is_object:
+        raise invalid(f"faces: given, but vertices is a {type(vertices).__name__} with its own "
+                      "vertices and faces; pass Mesh(mesh) alone")
+    return vertices, faces
 _INT32_MAX = np.iinfo(np.int32).max
 _E_ARG = int(lib.ISECT_E_ARG)
 
@@ -190,21 +225,27 @@ class Mesh(Solid):
     _indices: npt.NDArray[np.int32]
     _offsets: npt.NDArray[np.int64] | None
 
-    def __init__(self, vertices: ArrayLike, faces: Faces) -> None:
+    def __init__(self, vertices: ArrayLike | MeshLike, faces: Faces | None = None) -> None:
         """Build the mesh (the input is copied).
 
         Args:
-            vertices: an (V, 3) array of vertex positions.
+            vertices: an (V, 3) array of vertex positions; or, with faces
+                omitted, a mesh object: a ``trimesh.Trimesh`` or any object
+                with ``vertices`` and ``faces`` attributes that convert to
+                such arrays (duck typing; trimesh is not imported).
             faces: an (F, 3) integer array of triangles, an (F, k) array of
                 k-gons, or a sequence of index sequences (polygons of any
                 sizes >= 3, stored as CSR offsets).
 
         Raises:
             InvalidArgumentError: vertices not (V, 3); faces not integers; an
-                index outside [0, V); a face of fewer than 3 vertices.
+                index outside [0, V); a face of fewer than 3 vertices; faces
+                omitted for an object without ``vertices`` and ``faces``, or
+                given with one.
             NonFiniteError: NaN or infinity in the vertices.
             OutOfMemoryError: the C library could not allocate the mesh.
         """
+        vertices, faces = _mesh_arrays(vertices, faces)
         verts = as_rows(vertices, 3, "vertices")
         flat, offsets, nf = _as_faces(faces)
         _check_mesh_args(verts, flat, offsets, nf)
@@ -273,6 +314,48 @@ class Mesh(Solid):
         """Bytes the C mesh occupies: its copy of the input and the BVH
         (``isect_mesh_bytes``)."""
         return int(lib.isect_mesh_bytes(self._handle))
+
+    def to_trimesh(self) -> trimesh.Trimesh:
+        """The mesh as a ``trimesh.Trimesh`` (``process=False``: vertices and
+        faces as they are, nothing merged or removed).
+
+        The vertices are in world space: a transformed mesh's are mapped by
+        its matrix, and a mirroring matrix (negative determinant) reverses
+        each face's vertex order, so that the faces' right-hand normals point
+        the way this mesh's hits report (outward for a closed mesh).
+        Triangles keep their face indices (``prim``). Polygon faces are cut
+        into triangles (a fan for convex faces, ear clipping for concave
+        ones; the faces' orientation kept); then ``face_attributes
+        ["isect_face"]`` holds, for each triangle, the polygon face (the hit
+        ``prim``) it belongs to.
+
+        trimesh is imported here, not by ``import isect``.
+
+        Raises:
+            ImportError: trimesh is not installed.
+        """
+        try:
+            import trimesh
+        except ImportError as exc:
+            raise ImportError(
+                "Mesh.to_trimesh needs the trimesh package, which is not installed "
+                "(pip install trimesh); isect itself does not depend on it"
+            ) from exc
+        verts = np.array(self._data, dtype=np.float64)
+        mirrored = False
+        if self._matrix is not None:
+            verts = verts @ self._matrix[:3, :3].T + self._matrix[:3, 3]
+            mirrored = bool(np.linalg.det(self._matrix[:3, :3]) < 0)
+        attributes: dict[str, Any] = {}
+        if self._offsets is None:
+            tris = self._indices.reshape(-1, 3).astype(np.int64)
+        else:
+            tris, owner = triangulate(self._data, self._indices, self._offsets)
+            attributes["isect_face"] = owner
+        if mirrored:
+            tris = tris[:, ::-1]
+        return trimesh.Trimesh(vertices=verts, faces=np.ascontiguousarray(tris),
+                               face_attributes=attributes or None, process=False)
 
     # -------------------------------------------------------------- queries
 
