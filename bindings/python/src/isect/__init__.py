@@ -23,6 +23,10 @@ Helpers: :func:`polygon_normal`, :func:`plane_from_points`,
 :func:`abi_version`, :func:`default_threads` (the thread count of a batch
 call's default ``threads=None``: every core this process may run on).
 
+trimesh: ``isect.Mesh(a_trimesh)``, ``Mesh.to_trimesh()``, and
+``isect.trimesh.RayMeshIntersector`` (trimesh's ray interface; the submodule
+imports trimesh, on first use of ``isect.trimesh``).
+
 Errors: :class:`IsectError` and its subclasses :class:`InvalidArgumentError`,
 :class:`NonFiniteError`, :class:`DegenerateError` (all three also
 ``ValueError``) and :class:`OutOfMemoryError` (also ``MemoryError``), chosen
@@ -36,6 +40,9 @@ Example:
 """
 
 from __future__ import annotations
+
+import importlib
+from typing import Any
 
 from ._batch import default_threads
 from ._errors import (
@@ -71,6 +78,14 @@ from ._types import EPS_DEFAULT, HIT_DTYPE, RAY_DTYPE, Hit, HitKind
 
 #: The version of the compiled libisect ("MAJOR.MINOR.PATCH").
 __version__: str = version()
+
+
+def __getattr__(name: str) -> Any:
+    """``isect.trimesh``: the trimesh ray interface, imported on first use
+    (so ``import isect`` does not import trimesh)."""
+    if name == "trimesh":
+        return importlib.import_module(".trimesh", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = [
     "EPS_DEFAULT",
