@@ -34,7 +34,8 @@ E_NONFINITE = isect.NonFiniteError
 E_DEGENERATE = isect.DegenerateError
 
 
-def raises(error: type[isect.IsectError], message: str, call: Callable[[], Any]) -> isect.IsectError:
+def raises(error: type[isect.IsectError], message: str,
+           call: Callable[[], Any]) -> isect.IsectError:
     """``call()`` raises exactly ``error`` whose message is ``message``."""
     with pytest.raises(isect.IsectError) as info:
         call()
@@ -301,7 +302,7 @@ def test_python_checks_give_the_c_status(
 ) -> None:
     """The Python checks refuse what the C check refuses, with its status."""
     expected = _c_status(cls, data, n, flags)
-    shape = cls.__new__(cls)
+    shape = object.__new__(cls)
     try:
         shape._setup(np.array(data, dtype=np.float64), n, flags)
     except isect.IsectError as exc:
@@ -311,7 +312,7 @@ def test_python_checks_give_the_c_status(
         assert expected >= 0
 
 
-MESH_INPUTS: list[tuple[list[list[float]], list[list[int]]]] = [
+MESH_INPUTS: list[tuple[Any, list[list[int]]]] = [
     (TET_V, [[0, 1, 4]]),
     ([[0, 0, NAN], *TET_V[1:]], [[0, 1, 4]]),  # indices before the vertices' values
     ([[0, 0, NAN], *TET_V[1:]], TETS),
@@ -322,7 +323,7 @@ MESH_INPUTS: list[tuple[list[list[float]], list[list[int]]]] = [
 
 
 @pytest.mark.parametrize(("verts", "faces"), MESH_INPUTS)
-def test_mesh_checks_give_the_c_status(verts: list[list[float]], faces: list[list[int]]) -> None:
+def test_mesh_checks_give_the_c_status(verts: Any, faces: list[list[int]]) -> None:
     """Mesh construction refuses what isect_mesh_create refuses, with its status."""
     v = np.array(verts, dtype=np.float64)
     idx = np.array([i for f in faces for i in f], dtype=np.int32)

@@ -66,7 +66,8 @@ def test_mesh_object_errors() -> None:
     the object are named as for two arguments."""
     with pytest.raises(isect.InvalidArgumentError, match=r"^faces: missing"):
         isect.Mesh(CUBE_V)  # type: ignore[call-arg]
-    with pytest.raises(isect.InvalidArgumentError, match=r"^faces: given, but vertices is a Trimesh"):
+    with pytest.raises(isect.InvalidArgumentError,
+                       match=r"^faces: given, but vertices is a Trimesh"):
         isect.Mesh(trimesh.creation.box(), [[0, 1, 2]])
     with pytest.raises(isect.InvalidArgumentError,
                        match=r"^Mesh: faces\[1\]\[2\] = 8 is outside \[0, 8\)"):
@@ -169,7 +170,8 @@ def test_triangulation_of_random_concave_faces() -> None:
         assert tris.shape == (k - 2, 3) and np.all(owner == 0)
         area2 = (flat[:, 0] * np.roll(flat[:, 1], -1) - np.roll(flat[:, 0], -1) * flat[:, 1]).sum()
         a, b, c = flat[tris[:, 0]], flat[tris[:, 1]], flat[tris[:, 2]]
-        signed = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        ab, ac = b - a, c - a
+        signed = ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0]
         assert np.all(np.sign(signed) == np.sign(area2))  # the face's orientation
         assert signed.sum() == pytest.approx(area2, rel=1e-9)
         assert np.all(isect.point_in_polygon(flat, (a + b + c) / 3))

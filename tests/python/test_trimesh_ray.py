@@ -60,7 +60,8 @@ def _upstream() -> tuple[list[Any], str]:
         module = trimesh_upstream.load(where / name)
         for test in sorted(n for n in vars(module) if n.startswith("test_")):
             key = f"{name}::{test}"
-            marks = [pytest.mark.xfail(reason=BY_DESIGN[key], strict=True)] if key in BY_DESIGN else []
+            marks = ([pytest.mark.xfail(reason=BY_DESIGN[key], strict=True)]
+                     if key in BY_DESIGN else [])
             params.append(pytest.param(module, test, id=key, marks=marks))
     return params, ""
 
@@ -121,7 +122,8 @@ def test_return_types_and_shapes() -> None:
     ours = isect.trimesh.RayMeshIntersector(tm)
     theirs = ray_triangle.RayMeshIntersector(tm)
     for kwargs in ({}, {"multiple_hits": False}):
-        a, b = ours.intersects_id(origins, dirs, **kwargs), theirs.intersects_id(origins, dirs, **kwargs)
+        a = ours.intersects_id(origins, dirs, **kwargs)
+        b = theirs.intersects_id(origins, dirs, **kwargs)
         assert len(a) == len(b) == 2
         assert [x.dtype for x in a] == [np.dtype(np.int64)] * 2
         c = ours.intersects_id(origins, dirs, return_locations=True, **kwargs)

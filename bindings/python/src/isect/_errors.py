@@ -106,11 +106,12 @@ def error_for(
 def value_text(x: object) -> str:
     """A value for an error message: a number as Python prints it (``nan``,
     ``-1.0``, ``99``), an array or sequence as a list of such numbers."""
-    if isinstance(x, (list, tuple)) or (hasattr(x, "tolist") and getattr(x, "ndim", 0) > 0):
-        items = x.tolist() if hasattr(x, "tolist") else list(x)  # type: ignore[union-attr]
-        return "[" + ", ".join(value_text(v) for v in items) + "]"
-    if hasattr(x, "item"):
-        x = x.item()  # type: ignore[union-attr]
+    if isinstance(x, np.ndarray) and x.ndim > 0:
+        x = x.tolist()
+    if isinstance(x, (list, tuple)):
+        return "[" + ", ".join(value_text(v) for v in x) + "]"
+    if isinstance(x, np.generic):
+        x = x.item()
     return repr(x)
 
 

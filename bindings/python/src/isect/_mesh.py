@@ -245,9 +245,9 @@ class Mesh(Solid):
             NonFiniteError: NaN or infinity in the vertices.
             OutOfMemoryError: the C library could not allocate the mesh.
         """
-        vertices, faces = _mesh_arrays(vertices, faces)
-        verts = as_rows(vertices, 3, "vertices")
-        flat, offsets, nf = _as_faces(faces)
+        vertex_array, face_array = _mesh_arrays(vertices, faces)
+        verts = as_rows(vertex_array, 3, "vertices")
+        flat, offsets, nf = _as_faces(face_array)
         _check_mesh_args(verts, flat, offsets, nf)
         idx = np.ascontiguousarray(flat, dtype=np.int32)  # every index is in [0, V)
         out = ffi.new("isect_mesh **")

@@ -69,4 +69,5 @@ def reporter(progress: Any, desc: str, total: int, unit: str) -> Progress | None
     bar = _tqdm()
     if bar is None:
         return PlainProgress(desc, total, unit)
-    return bar(total=total, desc=desc, unit=unit, unit_scale=True, leave=True)  # type: ignore[no-any-return]
+    shown: Progress = bar(total=total, desc=desc, unit=unit, unit_scale=True, leave=True)
+    return shown

@@ -258,7 +258,7 @@ class Shape:
             if part == name:
                 if count == 0:
                     return flat[at:].reshape(-1, self._row)
-                return flat[at] if count == 1 else flat[at:at + count]  # type: ignore[return-value]
+                return flat[at] if count == 1 else flat[at:at + count]
             at += count
         raise KeyError(name)  # pragma: no cover - a name of _layout
 

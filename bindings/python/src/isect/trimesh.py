@@ -67,7 +67,7 @@ _HIT = (int(HitKind.ENTER), int(HitKind.EXIT), int(HitKind.TOUCH))
 
 def _is_hit(kinds: npt.NDArray[np.int32]) -> npt.NDArray[np.bool_]:
     """ENTER, EXIT or TOUCH (not MISS, not INVALID)."""
-    return (kinds >= _HIT[0]) & (kinds <= _HIT[-1])  # type: ignore[no-any-return]
+    return (kinds >= _HIT[0]) & (kinds <= _HIT[-1])
 
 
 def _ray_arrays(
@@ -110,7 +110,7 @@ class RayMeshIntersector:
     def _key(self) -> Any:
         """What the built mesh depends on: a Trimesh's content hash."""
         if isinstance(self.mesh, _trimesh.Trimesh):
-            return self.mesh.__hash__()
+            return hash(self.mesh)  # trimesh: a hash of the content
         return None
 
     def _prepared(self) -> tuple[Mesh, str]:
