@@ -192,6 +192,7 @@ module isect
     public :: isect_xform_init, isect_xform_ray, isect_xform_hits
     public :: isect_intersect, isect_intersect_batch, isect_intersect_all_batch
     public :: isect_contains, isect_contains_batch, isect_winding_number_batch, isect_spawn_ray
+    public :: isect_shape_bounds
     public :: isect_mesh_create, isect_mesh_destroy, isect_mesh_check, isect_mesh_bytes
 
     public :: isect_make_ray, isect_make_shape, isect_make_mesh_shape
@@ -622,6 +623,19 @@ module isect
             type(isect_ray), intent(inout) :: out
             integer(c_int) :: status
         end function isect_spawn_ray
+    end interface
+
+    ! A conservative world-space box lo(3)..hi(3) of the shape (isect.h:
+    ! infinite for unbounded shapes, empty (lo > hi) for a mesh without
+    ! vertices). Added in 1.1.
+    interface
+        function isect_shape_bounds(shape, lo, hi) bind(C, name="isect_shape_bounds") &
+                result(status)
+            import :: c_int, c_double, isect_shape
+            type(isect_shape), intent(in) :: shape
+            real(c_double), intent(out) :: lo(3), hi(3)
+            integer(c_int) :: status
+        end function isect_shape_bounds
     end interface
 
     ! ------------------------------------------------------------- meshes

@@ -524,6 +524,20 @@ ISECT_API int64_t isect_intersect_all_batch(const isect_shape *shape, const isec
  * non-finite point. */
 ISECT_API int isect_contains(const isect_shape *shape, const double p[3]);
 
+/* A conservative world-space box of the shape: every point of it (and every
+ * hit the library reports for it) lies in lo..hi. A sphere or ellipsoid is
+ * its centre +- its radii, a finite cylinder its axis segment +- r, a box
+ * itself, a triangle, polygon or mesh its vertices' extent, each rounded
+ * outward; a transformed shape the image of that box under the transform,
+ * widened by 2^-48 of the sums' magnitudes (far beyond their rounding).
+ * Unbounded (lo = -INFINITY, hi = +INFINITY on the axes concerned): planes,
+ * infinite cylinders, quadrics and convex polyhedra (whose extent is not
+ * computed), and every world axis such an axis maps into. A mesh without
+ * vertices has the empty box (lo = +INFINITY, hi = -INFINITY). ISECT_OK,
+ * or the shape's validation error (ISECT_E_ARG also for NULL lo or hi).
+ * Added in 1.1. */
+ISECT_API int isect_shape_bounds(const isect_shape *shape, double lo[3], double hi[3]);
+
 /* inside[i] for p[n][3]: 0, 1, or ISECT_INVALID for a non-finite point.
  * Returns the number inside, or an error (nothing written). */
 ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p, int64_t n,
@@ -566,8 +580,10 @@ ISECT_API int64_t isect_contains_batch(const isect_shape *shape, const double *p
  *    is already fast, so this pays only for points far from big meshes.
  *    Both build a cluster tree per call (~1.5 KiB per BVH node and ~100
  *    bytes per face, freed before returning).
- * A non-finite point gets w = NaN. ISECT_OK; ISECT_E_ARG for a non-mesh
- * shape, NULL p or w with n > 0, n < 0, accuracy negative or NaN;
+ * A non-finite point gets w = NaN; accuracy = +INFINITY counts as 0 (no
+ * error target at all would leave nothing to compute). ISECT_OK;
+ * ISECT_E_ARG for a non-mesh shape, NULL p or w with n > 0, n < 0,
+ * accuracy negative or NaN;
  * ISECT_E_NOMEM (nothing written) when the cluster tree cannot be built. */
 ISECT_API int isect_winding_number_batch(const isect_shape *shape, const double *p, int64_t n,
                                          double accuracy, double *w);

@@ -22,6 +22,7 @@ program test_forms
     call check_opts()
     call check_mesh()
     call check_spawn()
+    call check_bounds()
     call finish()
 
 contains
@@ -505,4 +506,18 @@ contains
                                     out) == ISECT_E_DEGENERATE, "spawn: a zero direction is ISECT_E_DEGENERATE")
     end subroutine check_spawn
 
+    ! The sphere at (0,0,5), radius 1: its box holds (-1,-1,4)..(1,1,6), and
+    ! exceeds it by at most the documented widening (2^-40 of 6, < 1e-11).
+    subroutine check_bounds()
+        real(c_double), target :: data(4) = [0.0_c_double, 0.0_c_double, 5.0_c_double, 1.0_c_double]
+        type(isect_shape) :: shape
+        real(c_double) :: lo(3), hi(3)
+        real(c_double), parameter :: e_lo(3) = [-1.0_c_double, -1.0_c_double, 4.0_c_double]
+        real(c_double), parameter :: e_hi(3) = [1.0_c_double, 1.0_c_double, 6.0_c_double]
+
+        shape = isect_make_shape(ISECT_SPHERE, data)
+        call record(isect_shape_bounds(shape, lo, hi) == ISECT_OK, "bounds: ISECT_OK")
+        call record(all(lo <= e_lo) .and. all(hi >= e_hi) .and. all(e_lo - lo < 1.0e-11_c_double) &
+                    .and. all(hi - e_hi < 1.0e-11_c_double), "bounds: the sphere's box")
+    end subroutine check_bounds
 end program test_forms

@@ -54,7 +54,7 @@ static void check_case(const cJSON *item)
         FUZZ_REQUIRE(memchr(err.message, '\0', sizeof err.message) != NULL && err.message[0],
                      "corpus_case_parse failed without a message");
     } else {
-        FUZZ_REQUIRE(c.op >= CORPUS_INTERSECT && c.op <= CORPUS_SPAWN, "op %d", (int)c.op);
+        FUZZ_REQUIRE(c.op >= CORPUS_INTERSECT && c.op <= CORPUS_WINDING_NUMBER, "op %d", (int)c.op);
         FUZZ_REQUIRE(c.status <= 0 && c.status >= ISECT_E_NOMEM, "status %d", c.status);
         FUZZ_REQUIRE(c.count >= 0, "count %d", c.count);
         FUZZ_REQUIRE(!c.hits_listed || c.count == 0 || c.hits != NULL, "listed hits missing");
@@ -62,6 +62,11 @@ static void check_case(const cJSON *item)
                      "polygon of %d points", c.polygon2_n);
         FUZZ_REQUIRE(c.vertices_n >= 0 && (c.vertices_n == 0 || c.vertices != NULL),
                      "%d vertices", c.vertices_n);
+        /* op winding_number: its points, and one expected w per point */
+        FUZZ_REQUIRE(c.points_n >= 0 && (c.points_n == 0 || c.points != NULL),
+                     "%d points", c.points_n);
+        FUZZ_REQUIRE(c.op != CORPUS_WINDING_NUMBER || c.status != ISECT_OK || c.windings != NULL,
+                     "winding_number expecting ok without its w values");
         FUZZ_REQUIRE(c.name != NULL, "no name");
     }
     corpus_case_free(&c);

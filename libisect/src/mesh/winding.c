@@ -199,26 +199,9 @@ static double triangle_solid_angle_dd(const double A[3], const double B[3], cons
 
 /* The signed solid angle of triangle A, B, C at q, and its error bound
  * when want_bound (see the top of the file). */
-static double triangle_solid_angle(const double A_in[3], const double B_in[3],
-                                   const double C_in[3], const double q_in[3], int want_bound,
-                                   double *bound)
+static double triangle_solid_angle(const double A[3], const double B[3], const double C[3],
+                                   const double q[3], int want_bound, double *bound)
 {
-    /* num and den are forms of degree 3 in the coordinates, so Omega is
-     * unchanged when all four points are scaled by one power of two, which
-     * is done where the triple products could overflow (coordinates beyond
-     * 2^300) or underflow (all below 2^-300): exact, but for bits of
-     * coordinates 2^1000 below the largest, which are lost to underflow */
-    double As[3], Bs[3], Cs[3], qs[3];
-    const double *A = A_in, *B = B_in, *C = C_in, *q = q_in;
-    double m = fmax_nan(fmax_nan(max_abs3(A), max_abs3(B)), fmax_nan(max_abs3(C), max_abs3(q)));
-    int e = pow2_exponent(m);
-    if (e > 300 || (e < -300 && m > 0.0)) {
-        scale3(As, A, e);
-        scale3(Bs, B, e);
-        scale3(Cs, C, e);
-        scale3(qs, q, e);
-        A = As, B = Bs, C = Cs, q = qs;
-    }
     double a[3], b[3], c[3], e1[3], e2[3], n[3], perm[3];
     sub3(A, q, a);
     sub3(B, q, b);
@@ -238,6 +221,28 @@ static double triangle_solid_angle(const double A_in[3], const double B_in[3],
     double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
     double den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
     double e_den = 64.0 * WINDING_U * la * lb * lc + WINDING_TINY;
+    /* num and den are forms of degree 3 in the coordinates, so Omega is
+     * unchanged when all four points are scaled by one power of two. Where
+     * the triple products overflowed (num, den or a bound not finite:
+     * beyond ~2^341) or |a||b||c| fell toward underflow (all within 2^-300
+     * of q),
+     * the four points are scaled to a largest coordinate near 1 (exact, but
+     * for bits of coordinates 2^1000 below the largest) and evaluated again;
+     * the test on the result costs the common case nothing measurable. */
+    double lll = la * lb * lc;
+    if (!(e_num + e_den <= 0x1p1000 && fabs(num) + fabs(den) + lll <= 0x1p1000
+          && lll >= 0x1p-900)) {
+        double m = fmax_nan(fmax_nan(max_abs3(A), max_abs3(B)), fmax_nan(max_abs3(C), max_abs3(q)));
+        int e = pow2_exponent(m);
+        if (m > 0.0 && (e > 8 || e < -8)) {
+            double As[3], Bs[3], Cs[3], qs[3];
+            scale3(As, A, e);
+            scale3(Bs, B, e);
+            scale3(Cs, C, e);
+            scale3(qs, q, e);
+            return triangle_solid_angle(As, Bs, Cs, qs, want_bound, bound);
+        }
+    }
     int refine;
     double omega = solid_angle_of(num, e_num, den, e_den, A, B, C, q, want_bound, bound, &refine);
     if (refine) {
@@ -619,9 +624,11 @@ static int outside_box(const bvh_node *n, int c, const double q[3])
  * than the faces (a cluster of slivers 2^200 long seen from beside them:
  * its cap's angles cancel to nothing in double-double too), so it is
  * added to s only when its own error bound is at most `tolerance` (in
- * units of w); returns 1 then, else 0 (the caller sums the faces). */
+ * units of w; without want_bound, the bounds of the triangles refined
+ * because theirs may exceed WINDING_REFINE); returns 1 then, else 0 (the
+ * caller sums the faces). */
 static int cluster_cap(const isect_mesh *m, const mesh_winding_tree *t, const winding_cluster *cl,
-                       const double q[3], double tolerance, angle_sum *s)
+                       const double q[3], int want_bound, double tolerance, angle_sum *s)
 {
     if (cl->edge_count == 0)
         return 1; /* no boundary: a closed cluster, 0 outside its box (and the
@@ -633,8 +640,11 @@ static int cluster_cap(const isect_mesh *m, const mesh_winding_tree *t, const wi
         if (e[i].a == e[0].a)
             continue; /* a fan triangle with two corners at the apex: 0 */
         double bound;
+        /* without want_bound, a bound is computed only for a triangle
+         * whose angle may be off by more than WINDING_REFINE: those alone
+         * can reject the cap, and the test costs no square root */
         double omega = triangle_solid_angle(apex, mesh_vertex(m, e[i].a), mesh_vertex(m, e[i].b), q,
-                                            1, &bound);
+                                            want_bound, &bound);
         angle_sum_add(&cap, e[i].count * omega, fabs((double)e[i].count) * bound);
     }
     if (!(cap.bound <= 4.0 * WINDING_PI * tolerance))
@@ -674,7 +684,7 @@ static double winding_far_pass(const isect_mesh *m, const mesh_winding_tree *t, 
                 angle_sum_add(&s, cluster_far(&cl[c], q, dist), 0.0);
                 far += e;
             } else if (cl[c].edge_count < cl[c].fans && outside_box(n, c, q)
-                       && cluster_cap(m, t, &cl[c], q, WINDING_CAP_TOLERANCE, &s)) {
+                       && cluster_cap(m, t, &cl[c], q, bound != NULL, WINDING_CAP_TOLERANCE, &s)) {
                 /* the cluster through its boundary */
             } else if (n->child[c] >= 0) {
                 stack[sp++] = n->child[c];

@@ -326,6 +326,26 @@ class Shape:
         """The row-major 4x4 object-to-world matrix, or None if untransformed."""
         return self._matrix
 
+    def bounds(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """A conservative world-space box ``(lo, hi)`` (``isect_shape_bounds``).
+
+        Every point of the shape, and every hit reported for it, lies in
+        ``lo <= x <= hi``: spheres, ellipsoids, boxes, finite cylinders,
+        triangles, planar polygons and meshes get their extent (transformed
+        shapes the image of it), widened by 2^-40 of its magnitude for the
+        rounding of reported points; planes, infinite cylinders, quadrics,
+        convex polyhedra and polygons whose vertices are not exactly
+        coplanar are unbounded (``-inf`` / ``inf``). A mesh without vertices
+        has the empty box (``lo = inf``, ``hi = -inf``).
+
+        Returns:
+            Two float64 arrays of shape (3,).
+        """
+        lo = ffi.new("double[3]")
+        hi = ffi.new("double[3]")
+        check(lib.isect_shape_bounds(self._c, lo, hi), f"{type(self).__name__}.bounds")
+        return np.array(list(lo), dtype=np.float64), np.array(list(hi), dtype=np.float64)
+
     def transformed(self: S, matrix: ArrayLike) -> S:
         """The same shape placed by an affine object-to-world transform.
 
