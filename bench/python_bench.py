@@ -177,8 +177,8 @@ def bench_shape(
     }
     runs: dict[str, Callable[[], Any]] = {
         "c_batch": lambda: c_batch(shape, rays),
-        "py_rays": lambda: shape.intersect_rays(rays),
-        "py_intersect": lambda: shape.intersect(org, dirs),
+        "py_rays": lambda: shape.intersect_rays(rays, threads=1),
+        "py_intersect": lambda: shape.intersect(org, dirs, threads=1),
         "py_threads2": lambda: shape.intersect_rays(rays, threads=2),
         "numpy": reference,
     }

@@ -30,7 +30,7 @@ is found per primitive by bisection so that numpy hits about half (the plane
 and the hyperboloid, unbounded, keep the widest cube: about 51 %).
 
 numpy and its BLAS are held to one thread (OPENBLAS_NUM_THREADS etc. are set
-to 1 before numpy is imported), like the library's calls (``threads=None``).
+to 1 before numpy is imported), like the library's calls (``threads=1``).
 Prints a table and writes bench/results/python_kernels.json. Run:
 ``.venv/bin/python bench/python_kernels_bench.py`` (``--n``, ``--repeat``,
 ``--only NAME``).
@@ -499,8 +499,8 @@ def bench_kernel(k: Kernel, n: int, repeat: int) -> dict[str, Any]:
     rel_dt = np.abs(lib["t"][both] - ref["t"][both]) / np.abs(lib["t"][both])
 
     runs: dict[str, Callable[[], Any]] = {
-        "intersect": lambda: k.shape.intersect(org, dirs),
-        "intersect_rays": lambda: k.shape.intersect_rays(rays),
+        "intersect": lambda: k.shape.intersect(org, dirs, threads=1),
+        "intersect_rays": lambda: k.shape.intersect_rays(rays, threads=1),
         "numpy": lambda: k.reference(org, dirs),
     }
     names = list(runs)

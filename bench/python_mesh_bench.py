@@ -116,7 +116,7 @@ def main() -> None:
         origins, dirs = make_rays(n)
         o32, d32 = origins.astype(np.float32), dirs.astype(np.float32)
         runs: dict[str, tuple[float, int]] = {}
-        t, hits = best_of(lambda: mesh.intersect(origins, dirs), args.repeat)
+        t, hits = best_of(lambda: mesh.intersect(origins, dirs, threads=1), args.repeat)
         ref = hits["kind"] != isect.HitKind.MISS
         runs["libisect 1 thread"] = (t, n)
         t, _ = best_of(lambda: mesh.intersect(origins, dirs, threads=args.threads), args.repeat)

@@ -20,7 +20,12 @@ Queries: ``shape.intersect`` (closest hit per ray, batch, ``HIT_DTYPE``),
 
 Helpers: :func:`polygon_normal`, :func:`plane_from_points`,
 :func:`point_in_polygon`, :func:`winding_number`, :func:`version`,
-:func:`abi_version`.
+:func:`abi_version`, :func:`default_threads` (the thread count of a batch
+call's default ``threads=None``: every core this process may run on).
+
+trimesh: ``isect.Mesh(a_trimesh)``, ``Mesh.to_trimesh()``, and
+``isect.trimesh.RayMeshIntersector`` (trimesh's ray interface; the submodule
+imports trimesh, on first use of ``isect.trimesh``).
 
 Errors: :class:`IsectError` and its subclasses :class:`InvalidArgumentError`,
 :class:`NonFiniteError`, :class:`DegenerateError` (all three also
@@ -36,6 +41,10 @@ Example:
 
 from __future__ import annotations
 
+import importlib
+from typing import Any
+
+from ._batch import default_threads
 from ._errors import (
     DegenerateError,
     InvalidArgumentError,
@@ -51,7 +60,7 @@ from ._helpers import (
     version,
     winding_number,
 )
-from ._mesh import Mesh, MeshReport
+from ._mesh import Mesh, MeshLike, MeshReport
 from ._shape import Shape, Solid
 from ._shapes import (
     Box,
@@ -70,6 +79,14 @@ from ._types import EPS_DEFAULT, HIT_DTYPE, RAY_DTYPE, Hit, HitKind
 #: The version of the compiled libisect ("MAJOR.MINOR.PATCH").
 __version__: str = version()
 
+
+def __getattr__(name: str) -> Any:
+    """``isect.trimesh``: the trimesh ray interface, imported on first use
+    (so ``import isect`` does not import trimesh)."""
+    if name == "trimesh":
+        return importlib.import_module(".trimesh", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 __all__ = [
     "EPS_DEFAULT",
     "HIT_DTYPE",
@@ -84,6 +101,7 @@ __all__ = [
     "InfiniteCylinder",
     "InvalidArgumentError",
     "Mesh",
+    "MeshLike",
     "MeshReport",
     "IsectError",
     "NonFiniteError",
@@ -96,6 +114,7 @@ __all__ = [
     "Sphere",
     "Triangle",
     "abi_version",
+    "default_threads",
     "plane_from_points",
     "point_in_polygon",
     "polygon_normal",

@@ -14,7 +14,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ._errors import invalid, nonfinite
+from ._batch import default_threads
+from ._errors import invalid, nonfinite, value_text
 from ._isect import ffi, lib
 from ._types import RAY_DTYPE
 
@@ -160,9 +161,11 @@ def as_rule(rule: Rule) -> int:
 
 
 def as_threads(threads: Any) -> int:
-    """Number of threads for a batch: None means 1."""
+    """Number of threads for a batch: None means every core this process may
+    run on (:func:`isect.default_threads`); 1 keeps the batch on the calling
+    thread."""
     if threads is None:
-        return 1
+        return default_threads()
     n = as_int(threads, "threads")
     if n < 1:
         raise invalid(f"threads: expected None or an integer >= 1, got {n}")
@@ -196,16 +199,38 @@ def make_opts(eps: Any, cull_back: bool, any_hit: bool) -> Any:
 
 def ray_culprit(org: Any, dirn: Any, tmin: float, tmax: float, names: Sequence[str]) -> str:
     """Which of a bad ray's arguments (``names``: origin, direction, tmin,
-    tmax) holds the problem the C library reports for it."""
+    tmax) holds the problem the C library reports for it (its ray check:
+    NaN or infinity first, then a zero direction)."""
     if not all(math.isfinite(v) for v in org):
         return names[0]
-    if not all(math.isfinite(v) for v in dirn) or not any(dirn):
+    if not all(math.isfinite(v) for v in dirn):
         return names[1]
     if math.isnan(tmin):
         return names[2]
     if math.isnan(tmax):
         return names[3]
+    if not any(dirn):
+        return names[1]
     return ", ".join(names)  # not one of the documented problems: all of them
+
+
+def ray_problem(org: Any, dirn: Any, tmin: float, tmax: float) -> str | None:
+    """What is wrong with a bad ray, naming the field and its value, in the
+    order of the C library's ray check (``origin = [nan, 0.0, -5.0] is not
+    finite``, ``direction = [0.0, 0.0, 0.0] is zero``); None for a ray with
+    none of those problems."""
+    org, dirn = [float(v) for v in org], [float(v) for v in dirn]
+    if not all(math.isfinite(v) for v in org):
+        return f"origin = {value_text(org)} is not finite"
+    if not all(math.isfinite(v) for v in dirn):
+        return f"direction = {value_text(dirn)} is not finite"
+    if math.isnan(tmin):
+        return "tmin = nan is not a number"
+    if math.isnan(tmax):
+        return "tmax = nan is not a number"
+    if not any(dirn):
+        return f"direction = {value_text(dirn)} is zero (a ray needs a direction)"
+    return None
 
 
 def ray_columns(

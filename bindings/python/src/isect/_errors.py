@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import numpy as np
+
 from ._isect import ffi, lib
 
 
@@ -77,6 +79,7 @@ def error_for(
     index: int | None = None,
     item: str = "element",
     arg: str | None = None,
+    detail: str | None = None,
 ) -> IsectError:
     """Build the exception for a negative status code.
 
@@ -86,14 +89,51 @@ def error_for(
         index: the flat index of the offending element of a batch, if any.
         item: what the batch holds ("ray", "point"), for the message.
         arg: the argument that holds the offending value, e.g. ``"radius"``.
+        detail: what exactly is wrong, naming the element and its value
+            (``"radius = -1.0 is negative"``), where Python can tell; the
+            C library's description of the status (``isect_strerror``)
+            otherwise.
 
-    The message reads "context: arg: item index: description".
+    The message reads "context: arg: item index: detail".
     """
     cls = STATUS_ERRORS.get(status, IsectError)
     where = f"{context}: " if context else ""
     named = f"{arg}: " if arg else ""
     which = f"{item} {index}: " if index is not None else ""
-    return cls(f"{where}{named}{which}{strerror(status)}", index=index)
+    return cls(f"{where}{named}{which}{detail or strerror(status)}", index=index)
+
+
+def value_text(x: object) -> str:
+    """A value for an error message: a number as Python prints it (``nan``,
+    ``-1.0``, ``99``), an array or sequence as a list of such numbers."""
+    if isinstance(x, np.ndarray) and x.ndim > 0:
+        x = x.tolist()
+    if isinstance(x, (list, tuple)):
+        return "[" + ", ".join(value_text(v) for v in x) + "]"
+    if isinstance(x, np.generic):
+        x = x.item()
+    return repr(x)
+
+
+def too_few(n: int, least: int, name: str, what: str) -> str | None:
+    """``"vertices: 2 given (a polygon needs at least 3)"`` if n < least,
+    else None."""
+    if n >= least:
+        return None
+    return f"{name}: {n} given ({what} needs at least {least})"
+
+
+def nonfinite_element(values: object, name: str) -> str | None:
+    """``"name[i][j] = nan is not finite"`` for the first NaN or infinity of
+    the array ``values`` (indexed as the array is shaped; ``name`` alone for
+    a scalar), or None when every value is finite."""
+    a = np.asarray(values, dtype=np.float64)
+    bad = ~np.isfinite(a)
+    if not bad.any():
+        return None
+    at = np.unravel_index(int(bad.argmax()), a.shape) if a.ndim else ()
+    element = name + "".join(f"[{int(i)}]" for i in at)
+    return f"{element} = {value_text(a[at])} is not finite"
 
 
 def check(status: int, context: str, arg: str | None = None) -> int:

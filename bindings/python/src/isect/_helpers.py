@@ -9,9 +9,9 @@ import numpy as np
 import numpy.typing as npt
 
 from ._args import ArrayLike, Rule, as_points, as_rows, as_rule
-from ._errors import check
+from ._errors import check, error_for, nonfinite_element, too_few
 from ._isect import ffi, lib
-from ._shape import raise_bad_element
+from ._shape import point_problem, raise_bad_element
 
 _INT32_MIN = -(2**31)
 _RULE_VALUES = (int(lib.ISECT_EVEN_ODD), int(lib.ISECT_NONZERO))
@@ -42,13 +42,13 @@ def polygon_normal(vertices: ArrayLike) -> npt.NDArray[np.float64]:
         DegenerateError: a polygon of zero area (collinear vertices).
     """
     v = as_rows(vertices, 3, "vertices")
+    _check_polygon(v, "vertices", "polygon_normal", "a polygon")
     out = np.empty(3, dtype=np.float64)
-    check(
+    _check_area(
         lib.isect_polygon_normal(
             ffi.from_buffer("double[]", v), v.shape[0], ffi.from_buffer("double[]", out)
         ),
         "polygon_normal",
-        "vertices",
     )
     return out
 
@@ -62,15 +62,36 @@ def plane_from_points(vertices: ArrayLike) -> npt.NDArray[np.float64]:
         DegenerateError: collinear points.
     """
     v = as_rows(vertices, 3, "vertices")
+    _check_polygon(v, "vertices", "plane_from_points", "a plane")
     out = np.empty(4, dtype=np.float64)
-    check(
+    _check_area(
         lib.isect_plane_from_points(
             ffi.from_buffer("double[]", v), v.shape[0], ffi.from_buffer("double[]", out)
         ),
         "plane_from_points",
-        "vertices",
     )
     return out
+
+
+def _check_polygon(v: npt.NDArray[np.float64], name: str, context: str, what: str) -> None:
+    """The C helpers' checks of a polygon's vertices, in their order, naming
+    the element: fewer than 3 vertices, then NaN or infinity."""
+    detail = too_few(v.shape[0], 3, name, what)
+    if detail is not None:
+        raise error_for(int(lib.ISECT_E_ARG), context, detail=detail)
+    detail = nonfinite_element(v, name)
+    if detail is not None:
+        raise error_for(int(lib.ISECT_E_NONFINITE), context, detail=detail)
+
+
+def _check_area(status: int, context: str) -> None:
+    """The status of a normal or plane through points: DEGENERATE said as
+    what it is for them (zero area)."""
+    if status == lib.ISECT_E_DEGENERATE:
+        raise error_for(status, context, detail=(
+            "vertices: the polygon has zero area (collinear or coincident vertices): "
+            "no normal"))
+    check(status, context, "vertices")
 
 
 def _polygon_and_points(
@@ -104,6 +125,12 @@ def point_in_polygon(polygon: ArrayLike, points: ArrayLike, rule: Rule = "evenod
     """
     poly, pts, shape = _polygon_and_points(polygon, points)
     r = as_rule(rule)
+    if r not in _RULE_VALUES:  # the C order: the rule, then the polygon
+        raise error_for(int(lib.ISECT_E_ARG), "point_in_polygon", detail=(
+            f"rule = {r} is not a fill rule: 'evenodd' (ISECT_EVEN_ODD = "
+            f"{int(lib.ISECT_EVEN_ODD)}) or 'nonzero' (ISECT_NONZERO = "
+            f"{int(lib.ISECT_NONZERO)})"))
+    _check_polygon(poly, "polygon", "point_in_polygon", "a polygon")
     inside = np.empty(pts.shape[0], dtype=np.uint8)
     pp = ffi.from_buffer("double[]", poly)
     qp = ffi.from_buffer("double[]", pts)
@@ -118,7 +145,8 @@ def point_in_polygon(polygon: ArrayLike, points: ArrayLike, rule: Rule = "evenod
     if bad.any():
         i = int(bad.argmax())
         status = lib.isect_point_in_polygon2(pp, poly.shape[0], qp + 2 * i, r)
-        raise_bad_element(status, "point_in_polygon", i, "point", "points")
+        raise_bad_element(status, "point_in_polygon", i, "point", "points",
+                          point_problem(pts[i]))
     result = inside.view(np.bool_).reshape(shape)
     return bool(result) if shape == () else result
 
@@ -140,6 +168,7 @@ def winding_number(polygon: ArrayLike, points: ArrayLike) -> Any:
             names the first).
     """
     poly, pts, shape = _polygon_and_points(polygon, points)
+    _check_polygon(poly, "polygon", "winding_number", "a polygon")
     winding = np.empty(pts.shape[0], dtype=np.int32)
     pp = ffi.from_buffer("double[]", poly)
     qp = ffi.from_buffer("double[]", pts)
@@ -154,6 +183,6 @@ def winding_number(polygon: ArrayLike, points: ArrayLike) -> Any:
     if bad.any():
         i = int(bad.argmax())
         status = lib.isect_winding_number2(pp, poly.shape[0], qp + 2 * i, ffi.new("int32_t *"))
-        raise_bad_element(status, "winding_number", i, "point", "points")
+        raise_bad_element(status, "winding_number", i, "point", "points", point_problem(pts[i]))
     result = winding.reshape(shape)
     return int(result) if shape == () else result

@@ -13,22 +13,65 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 import numpy.typing as npt
 
-from . import _batch
+from . import _batch, _progress
 from ._args import ArrayLike, as_points, as_rows, as_threads
-from ._errors import InvalidArgumentError, check, error_for, invalid
+from ._errors import (
+    InvalidArgumentError,
+    check,
+    error_for,
+    invalid,
+    nonfinite_element,
+    value_text,
+)
 from ._isect import ffi, lib
-from ._shape import Solid, frozen, readonly_view
+from ._shape import Solid, frozen, point_problem, readonly_view
+from ._triangulate import triangulate
+
+if TYPE_CHECKING:  # pragma: no cover - trimesh is optional, imported by to_trimesh
+    import trimesh
 
 #: Faces: an (F, k) integer array (k = 3: triangles; k > 3: polygons of k
 #: vertices each) or a sequence of index sequences (polygons of any sizes).
 Faces = npt.ArrayLike | Sequence[Sequence[int]]
 
+
+@runtime_checkable
+class MeshLike(Protocol):
+    """What :class:`Mesh` takes in one argument: an object with ``vertices``
+    ((V, 3) numbers) and ``faces`` (as the ``faces`` argument) attributes, such
+    as a ``trimesh.Trimesh``."""
+
+    @property
+    def vertices(self) -> Any:
+        """(V, 3) vertex positions."""
+
+    @property
+    def faces(self) -> Any:
+        """Faces, as :class:`Mesh` takes them."""
+
+
+def _mesh_arrays(vertices: Any, faces: Any) -> tuple[Any, Any]:
+    """The (vertices, faces) arrays of Mesh's arguments: as given, or read
+    from a mesh object's ``vertices`` and ``faces`` attributes when faces is
+    omitted."""
+    is_object = hasattr(vertices, "vertices") and hasattr(vertices, "faces")
+    if faces is None:
+        if not is_object:
+            raise invalid("faces: missing; pass Mesh(vertices, faces), or Mesh(mesh) with an "
+                          "object that has vertices and faces attributes (a trimesh.Trimesh), "
+                          f"not {type(vertices).__name__}")
+        return vertices.vertices, vertices.faces
+    if is_object:
+        raise invalid(f"faces: given, but vertices is a {type(vertices).__name__} with its own "
+                      "vertices and faces; pass Mesh(mesh) alone")
+    return vertices, faces
 _INT32_MAX = np.iinfo(np.int32).max
+_E_ARG = int(lib.ISECT_E_ARG)
 
 
 @dataclasses.dataclass(frozen=True, slots=True)
@@ -83,19 +126,19 @@ class MeshReport:
         return cls(**values)
 
 
-def _as_indices(a: npt.NDArray[Any], name: str) -> npt.NDArray[np.int32]:
-    """Integer vertex indices as int32 (an index beyond int32 is out of range anyway)."""
+def _as_indices(a: npt.NDArray[Any], name: str) -> npt.NDArray[Any]:
+    """``a`` if it holds integers (any integer dtype; the range is checked
+    against the vertex count later), else an InvalidArgumentError."""
     if a.size and a.dtype.kind not in "iu":
         raise invalid(f"{name}: vertex indices must be integers, got dtype {a.dtype}")
-    if a.size and (a.min() < 0 or a.max() > _INT32_MAX):
-        raise invalid(f"{name}: vertex index out of range (min {a.min()}, max {a.max()})")
-    return np.ascontiguousarray(a, dtype=np.int32)
+    return a
 
 
 def _as_faces(
     faces: Faces,
-) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.int64] | None, int]:
-    """Flat indices, CSR offsets (None for a triangle array) and the face count."""
+) -> tuple[npt.NDArray[Any], npt.NDArray[np.int64] | None, int]:
+    """Flat integer indices (not yet range-checked), CSR offsets (None for a
+    triangle array) and the face count."""
     try:
         a = np.asarray(faces)
     except ValueError:  # ragged: numpy refuses an inhomogeneous nested sequence
@@ -115,13 +158,47 @@ def _as_faces(
         polys = [p if p.size else p.astype(np.int64) for p in polys]
     except (TypeError, ValueError):
         raise invalid("faces: expected an (F, k) array or a sequence of index sequences") from None
-    if any(p.ndim != 1 for p in polys):
-        raise invalid("faces: each face must be a flat sequence of vertex indices")
+    for f, p in enumerate(polys):
+        if p.ndim != 1:
+            raise invalid(f"faces[{f}]: expected a flat sequence of vertex indices, got an "
+                          f"array of shape {p.shape}")
     counts = np.fromiter((p.size for p in polys), dtype=np.int64, count=len(polys))
     offsets = np.zeros(len(polys) + 1, dtype=np.int64)
     np.cumsum(counts, out=offsets[1:])
     flat = np.concatenate(polys) if polys else np.zeros(0, dtype=np.int32)
     return _as_indices(flat, "faces"), offsets, len(polys)
+
+
+def _check_mesh_args(verts: npt.NDArray[np.float64], flat: npt.NDArray[Any],
+                     offsets: npt.NDArray[np.int64] | None, nf: int) -> None:
+    """Raise for what ``isect_mesh_create`` refuses, in its order (counts,
+    face sizes, indices, then the vertices' values), naming the element and
+    its value: ``faces[3] has 2 vertices``, ``faces[12][1] = 99 is outside
+    [0, 40)``, ``vertices[5][2] = inf is not finite``."""
+    nv = verts.shape[0]
+    if nv > _INT32_MAX:
+        raise error_for(_E_ARG, "Mesh", detail=f"vertices: {nv} vertices (at most 2^31 - 1)")
+    if nf > _INT32_MAX:
+        raise error_for(_E_ARG, "Mesh", detail=f"faces: {nf} faces (at most 2^31 - 1)")
+    if offsets is not None and nf:
+        sizes = np.diff(offsets)
+        small = sizes < 3
+        if small.any():
+            f = int(small.argmax())
+            raise error_for(_E_ARG, "Mesh", detail=(
+                f"faces[{f}] has {int(sizes[f])} vertices (a face needs at least 3)"))
+    if flat.size:
+        bad = (flat < 0) | (flat >= nv)
+        if bad.any():
+            i = int(bad.argmax())
+            f = i // 3 if offsets is None else int(np.searchsorted(offsets, i, side="right")) - 1
+            j = i - (3 * f if offsets is None else int(offsets[f]))
+            raise error_for(_E_ARG, "Mesh", detail=(
+                f"faces[{f}][{j}] = {value_text(flat[i])} is outside [0, {nv}) (the vertex "
+                "indices)"))
+    detail = nonfinite_element(verts, "vertices")
+    if detail is not None:
+        raise error_for(int(lib.ISECT_E_NONFINITE), "Mesh", detail=detail)
 
 
 class Mesh(Solid):
@@ -148,34 +225,31 @@ class Mesh(Solid):
     _indices: npt.NDArray[np.int32]
     _offsets: npt.NDArray[np.int64] | None
 
-    def __init__(self, vertices: ArrayLike, faces: Faces) -> None:
+    def __init__(self, vertices: ArrayLike | MeshLike, faces: Faces | None = None) -> None:
         """Build the mesh (the input is copied).
 
         Args:
-            vertices: an (V, 3) array of vertex positions.
+            vertices: an (V, 3) array of vertex positions; or, with faces
+                omitted, a mesh object: a ``trimesh.Trimesh`` or any object
+                with ``vertices`` and ``faces`` attributes that convert to
+                such arrays (duck typing; trimesh is not imported).
             faces: an (F, 3) integer array of triangles, an (F, k) array of
                 k-gons, or a sequence of index sequences (polygons of any
                 sizes >= 3, stored as CSR offsets).
 
         Raises:
             InvalidArgumentError: vertices not (V, 3); faces not integers; an
-                index outside [0, V); a face of fewer than 3 vertices.
+                index outside [0, V); a face of fewer than 3 vertices; faces
+                omitted for an object without ``vertices`` and ``faces``, or
+                given with one.
             NonFiniteError: NaN or infinity in the vertices.
             OutOfMemoryError: the C library could not allocate the mesh.
         """
-        verts = as_rows(vertices, 3, "vertices")
-        idx, offsets, nf = _as_faces(faces)
-        if idx.size and idx.max() >= verts.shape[0]:
-            raise invalid(
-                f"faces: vertex index {int(idx.max())} out of range for "
-                f"{verts.shape[0]} vertices"
-            )
-        if offsets is not None and nf and np.diff(offsets).min() < 3:
-            f = int(np.diff(offsets).argmin())
-            raise invalid(f"faces: face {f} has {int(offsets[f + 1] - offsets[f])} vertices "
-                          "(at least 3)")
-        if offsets is None and idx.size != 3 * nf:  # pragma: no cover - by construction
-            raise invalid("faces: triangle indices are not 3 per face")
+        vertex_array, face_array = _mesh_arrays(vertices, faces)
+        verts = as_rows(vertex_array, 3, "vertices")
+        flat, offsets, nf = _as_faces(face_array)
+        _check_mesh_args(verts, flat, offsets, nf)
+        idx = np.ascontiguousarray(flat, dtype=np.int32)  # every index is in [0, V)
         out = ffi.new("isect_mesh **")
         check(
             lib.isect_mesh_create(
@@ -198,6 +272,13 @@ class Mesh(Solid):
     def _geometry(self) -> tuple[Any, Any]:
         """A mesh descriptor has data NULL and the handle as ``mesh``."""
         return ffi.NULL, self._handle
+
+    def _validate(self) -> None:
+        """Nothing: the input was checked before ``isect_mesh_create``."""
+
+    def _prim_count(self) -> int:
+        """Hit prims are face indices."""
+        return self.n_faces
 
     # ----------------------------------------------------------- properties
 
@@ -234,6 +315,48 @@ class Mesh(Solid):
         (``isect_mesh_bytes``)."""
         return int(lib.isect_mesh_bytes(self._handle))
 
+    def to_trimesh(self) -> trimesh.Trimesh:
+        """The mesh as a ``trimesh.Trimesh`` (``process=False``: vertices and
+        faces as they are, nothing merged or removed).
+
+        The vertices are in world space: a transformed mesh's are mapped by
+        its matrix, and a mirroring matrix (negative determinant) reverses
+        each face's vertex order, so that the faces' right-hand normals point
+        the way this mesh's hits report (outward for a closed mesh).
+        Triangles keep their face indices (``prim``). Polygon faces are cut
+        into triangles (a fan for convex faces, ear clipping for concave
+        ones; the faces' orientation kept); then ``face_attributes
+        ["isect_face"]`` holds, for each triangle, the polygon face (the hit
+        ``prim``) it belongs to.
+
+        trimesh is imported here, not by ``import isect``.
+
+        Raises:
+            ImportError: trimesh is not installed.
+        """
+        try:
+            import trimesh
+        except ImportError as exc:
+            raise ImportError(
+                "Mesh.to_trimesh needs the trimesh package, which is not installed "
+                "(pip install trimesh); isect itself does not depend on it"
+            ) from exc
+        verts = np.array(self._data, dtype=np.float64)
+        mirrored = False
+        if self._matrix is not None:
+            verts = verts @ self._matrix[:3, :3].T + self._matrix[:3, 3]
+            mirrored = bool(np.linalg.det(self._matrix[:3, :3]) < 0)
+        attributes: dict[str, Any] = {}
+        if self._offsets is None:
+            tris = self._indices.reshape(-1, 3).astype(np.int64)
+        else:
+            tris, owner = triangulate(self._data, self._indices, self._offsets)
+            attributes["isect_face"] = owner
+        if mirrored:
+            tris = tris[:, ::-1]
+        return trimesh.Trimesh(vertices=verts, faces=np.ascontiguousarray(tris),
+                               face_attributes=attributes or None, process=False)
+
     # -------------------------------------------------------------- queries
 
     def check(self) -> MeshReport:
@@ -244,7 +367,12 @@ class Mesh(Solid):
         return MeshReport._from_c(report)
 
     def contains(  # type: ignore[override]
-        self, points: ArrayLike, *, rule: str = "evenodd", threads: int | None = None
+        self,
+        points: ArrayLike,
+        *,
+        rule: str = "evenodd",
+        threads: int | None = None,
+        progress: bool = False,
     ) -> Any:
         """Whether each point lies inside, by a containment rule (``isect_contains_batch``).
 
@@ -258,7 +386,10 @@ class Mesh(Solid):
                 non-manifold, soups; exact on closed oriented meshes, where
                 it means w >= 1). On a closed mesh, points on the surface are
                 inside.
-            threads: split the batch over this many threads.
+            threads: split the batch over this many threads; None (the
+                default): every core; the result is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
@@ -277,7 +408,7 @@ class Mesh(Solid):
         c = ffi.new("isect_shape *", self._c[0])
         c.flags = flags
         try:
-            return self._contains(c, points, threads, name)
+            return self._contains(c, points, threads, name, progress)
         except InvalidArgumentError:
             if rule == "winding":
                 raise
@@ -286,7 +417,12 @@ class Mesh(Solid):
                           "rule='winding' works for any mesh") from None
 
     def winding_number(
-        self, points: ArrayLike, accuracy: float | None = None, *, threads: int | None = None
+        self,
+        points: ArrayLike,
+        accuracy: float | None = None,
+        *,
+        threads: int | None = None,
+        progress: bool = False,
     ) -> npt.NDArray[np.float64] | float:
         """The generalized winding number at each point (``isect_winding_number_batch``).
 
@@ -306,7 +442,10 @@ class Mesh(Solid):
                 2013). > 0: a second-order far field for distant clusters,
                 within ``accuracy`` of that (a proven bound).
             threads: split the batch over this many threads (each builds its
-                own cluster tree for accuracy > 0).
+                own cluster tree); None (the default): every core; the result
+                is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A float64 array of shape (...), or a float for a single (3,) point;
@@ -339,13 +478,15 @@ class Mesh(Solid):
             """One chunk of the batch: the C call over [lo, hi)."""
             return int(lib.isect_winding_number_batch(c, pp + 3 * lo, hi - lo, acc, wp + lo))
 
-        for status in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "point")
+        for status in _batch.run(work, n, nthreads, report):
             check(status, name)
         bad = np.isnan(w)
         if bad.any():
             index = int(bad.argmax())
             raise error_for(int(lib.ISECT_E_NONFINITE), name, index=index, item="point",
-                            arg="points")
+                            arg="points", detail=point_problem(flat[index]))
         return float(w[0]) if shape == () else w.reshape(shape)
 
     # ------------------------------------------------------------ internals

@@ -23,7 +23,7 @@ from typing import Any, ClassVar, TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from . import _batch
+from . import _batch, _progress
 from ._args import (
     ArrayLike,
     Vector3,
@@ -40,9 +40,10 @@ from ._args import (
     make_rays,
     ray_columns,
     ray_culprit,
+    ray_problem,
     raise_on_bad,
 )
-from ._errors import IsectError, check, error_for, invalid
+from ._errors import IsectError, check, error_for, invalid, nonfinite_element, value_text
 from ._isect import ffi, lib
 from ._types import HIT_DTYPE, KIND_BY_VALUE, RAY_DTYPE, Hit
 
@@ -52,6 +53,7 @@ S = TypeVar("S", bound="Shape")
 T = TypeVar("T", bound=np.generic)
 
 _INVALID = int(lib.ISECT_INVALID)
+_HIT_KINDS = (int(lib.ISECT_ENTER), int(lib.ISECT_EXIT), int(lib.ISECT_TOUCH))
 # struct layouts of one isect_hit / isect_ray, for single-ray queries; they hold
 # only if the C structs are packed in field order (checked below).
 _HIT_STRUCT = struct.Struct("=9d2i")  # t, point[3], normal[3], uv[2], prim, kind
@@ -211,7 +213,54 @@ class Shape:
         self._flags = flags
         self._matrix = None
         self._xform = ffi.NULL
+        self._validate()
         self._describe()
+
+    def _validate(self) -> None:
+        """Raise for what the C check of the type refuses, in the order it
+        checks, naming the element and its value (``radius = -1.0 is
+        negative``, ``center[1] = nan is not finite``): the counts and flags
+        (:meth:`_check_counts`), then NaN and infinity, then the type's rules
+        for values (:meth:`_check_values`). The C library validates the
+        numbers again (:meth:`_describe`); it is the judge, this only names."""
+        context = type(self).__name__
+        detail = self._check_counts()
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=detail)
+        for name, _ in self._layout:
+            detail = nonfinite_element(self._part(name), name)
+            if detail is not None:
+                raise error_for(int(lib.ISECT_E_NONFINITE), context, detail=detail)
+        detail = self._check_values()
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=detail)
+
+    def _check_counts(self) -> str | None:
+        """What is wrong with the shape's counts or flags (a polygon of 2
+        vertices, an unknown rule), or None."""
+        return None
+
+    def _check_values(self) -> str | None:
+        """What is wrong with the shape's (finite) numbers (a negative
+        radius, lo > hi), or None."""
+        return None
+
+    #: Numbers per row of a "the rest" part of ``_layout`` (count 0): 3 for
+    #: vertices, 4 for planes.
+    _row: ClassVar[int] = 3
+
+    def _part(self, name: str) -> npt.NDArray[np.float64]:
+        """The numbers of the constructor argument ``name`` (``_layout``): a
+        0-d array for one number, (k,) for a vector, (rows, _row) for the rest."""
+        flat = self._data.reshape(-1)
+        at = 0
+        for part, count in self._layout:
+            if part == name:
+                if count == 0:
+                    return flat[at:].reshape(-1, self._row)
+                return flat[at] if count == 1 else flat[at:at + count]
+            at += count
+        raise KeyError(name)  # pragma: no cover - a name of _layout
 
     def _describe(self) -> None:
         """(Re)build the C descriptor and let libisect validate it."""
@@ -316,14 +365,24 @@ class Shape:
             DegenerateError: a singular linear part.
         """
         m = as_matrix4(matrix)
+        context = f"{type(self).__name__}.transformed"
+        # isect_xform_init's checks, in its order, naming the element.
+        detail = nonfinite_element(m, "matrix")
+        if detail is not None:
+            raise error_for(int(lib.ISECT_E_NONFINITE), context, detail=detail)
+        if m[3].tolist() != [0.0, 0.0, 0.0, 1.0]:
+            raise error_for(int(lib.ISECT_E_ARG), context, detail=(
+                f"matrix[3] = {value_text(m[3])} is not [0.0, 0.0, 0.0, 1.0] (the last row "
+                "of an affine object-to-world matrix)"))
         if self._matrix is not None:
             m = m @ self._matrix
         xform = ffi.new("isect_xform *")
-        check(
-            lib.isect_xform_init(xform, ffi.from_buffer("double[]", m)),
-            f"{type(self).__name__}.transformed",
-            "matrix",
-        )
+        status = lib.isect_xform_init(xform, ffi.from_buffer("double[]", m))
+        if status == lib.ISECT_E_DEGENERATE:
+            raise error_for(status, context, detail=(
+                f"matrix: the linear part {value_text(m[:3, :3])} is singular (the determinant "
+                "of its rows scaled to unit length is at most 2^-40 in magnitude)"))
+        check(status, context, "matrix")
         new = copy.copy(self)
         new._matrix = frozen(m)
         new._xform = xform
@@ -344,6 +403,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> Any:
         """Closest hit of each ray (``isect_intersect_batch``).
 
@@ -359,11 +419,16 @@ class Shape:
             cull_back: drop EXIT hits of thin surfaces (``ISECT_CULL_BACK``).
             any_hit: accept any hit (``ISECT_ANY_HIT``; occlusion queries).
             threads: split the batch over this many threads (the GIL is
-                released during the C calls); the result is byte-identical
-                to ``threads=None``.
+                released during the C calls); None (the default): every core
+                this process may run on (:func:`isect.default_threads`); 1:
+                on the calling thread. The result is byte-identical for every
+                value.
             errors: ``"raise"`` raises for the first bad ray (NaN/Inf, zero
                 direction, NaN tmin/tmax), naming its flat index;
                 ``"mark"`` returns bad rays as kind INVALID with t = NaN.
+            progress: show a progress bar (tqdm if installed, else a
+                percentage on standard error) while the batch runs; the
+                result is the same.
 
         Returns:
             A ``HIT_DTYPE`` array of the broadcast batch shape, or a single
@@ -381,16 +446,19 @@ class Shape:
             and threads is None
             and type(errors) is str
             and errors == "raise"
+            and progress is False
         ):
             record = _closest_one(self._c, origins, directions, tmin, tmax)
             if record is not None:
                 return record
         soa = _soa_columns(origins, directions, tmin, tmax)
         if soa is not None:
-            hits, shape = self._closest_soa(soa, eps, cull_back, any_hit, threads, errors)
+            hits, shape = self._closest_soa(soa, eps, cull_back, any_hit, threads, errors,
+                                            progress)
         else:
             rays, shape = make_rays(origins, directions, tmin, tmax)
-            hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect")
+            hits = self._closest(rays, eps, cull_back, any_hit, threads, errors, "intersect",
+                                 progress)
         return hits.reshape(shape)[()] if shape == () else hits.reshape(shape)
 
     def intersect_rays(
@@ -402,6 +470,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> npt.NDArray[np.void]:
         """Closest hit of each ray of a ``RAY_DTYPE`` array, without copying it.
 
@@ -410,7 +479,8 @@ class Shape:
         and result as for :meth:`intersect`; the result has ``rays.shape``.
         """
         flat, shape = as_ray_array(rays)
-        hits = self._closest(flat, eps, cull_back, any_hit, threads, errors, "intersect_rays")
+        hits = self._closest(flat, eps, cull_back, any_hit, threads, errors, "intersect_rays",
+                             progress)
         return hits.reshape(shape)
 
     def intersect_all(
@@ -473,7 +543,9 @@ class Shape:
         if n < 0:
             org, dirn, lo, hi = ray.org, ray.dir, ray.tmin, ray.tmax
             culprit = ray_culprit(org, dirn, lo, hi, ("origin", "direction", "tmin", "tmax"))
-            raise error_for(n, f"{type(self).__name__}.intersect_all", arg=culprit)
+            detail = ray_problem(org, dirn, lo, hi)  # names the argument and its value
+            raise error_for(n, f"{type(self).__name__}.intersect_all",
+                            arg=None if detail else culprit, detail=detail)
         out = []
         for offset in range(0, _HIT_SIZE * n, _HIT_SIZE):
             t, px, py, pz, nx, ny, nz, u, v, prim, kind = _unpack_hit(hit_bytes, offset)
@@ -492,6 +564,7 @@ class Shape:
         any_hit: bool = False,
         threads: int | None = None,
         errors: str = "raise",
+        progress: bool = False,
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.void]]:
         """Every hit of every ray, CSR style (``isect_intersect_all_batch``).
 
@@ -529,7 +602,7 @@ class Shape:
                 )
             return total, offsets, hits[: max(total, 0)]
 
-        parts = _batch.run(work, n, nthreads)
+        parts = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for total, _, _ in parts:
             check(total, name)
         if len(parts) == 1:
@@ -559,6 +632,7 @@ class Shape:
         directions: ArrayLike,
         *,
         threads: int | None = None,
+        progress: bool = False,
     ) -> Any:
         """Secondary rays leaving this shape's surface at hits (``isect_spawn_ray``).
 
@@ -578,7 +652,10 @@ class Shape:
                 unit length. Hits and directions broadcast against each other
                 (one hit with many directions, or one direction for many hits).
             threads: split a large batch over this many threads (the GIL is
-                released); the result is the same.
+                released); None (the default): every core; the result is the
+                same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`intersect`).
 
         Returns:
             A ``RAY_DTYPE`` array of the broadcast shape, or a single
@@ -628,13 +705,45 @@ class Shape:
             )
             return int(status), (lo + int(bad[0]) if status < 0 else -1)
 
-        for status, index in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "ray")
+        for status, index in _batch.run(work, n, nthreads, report):
             if status < 0:
                 d = dflat[index * dir_step:index * dir_step + 3]
-                bad_dir = not np.isfinite(d).all() or not d.any()
-                raise error_for(status, name, index=index, item="hit",
-                                arg="directions" if bad_dir else "hits")
+                arg, detail = self._spawn_problem(hflat[index * hit_step], d)
+                raise error_for(status, name, index=index, item="hit", arg=arg, detail=detail)
         return out.reshape(shape)[()] if shape == () else out.reshape(shape)
+
+    def _spawn_problem(self, hit: Any, d: npt.NDArray[np.float64]) -> tuple[str, str]:
+        """The argument and what is wrong with a row that :meth:`spawn`
+        refused, with its values, by the checks of ``isect_spawn_ray`` in
+        their order."""
+        kind, prim = int(hit["kind"]), int(hit["prim"])
+        point, normal = hit["point"], hit["normal"]
+        if kind not in _HIT_KINDS:
+            what = _KINDS[kind].name if 0 <= kind < len(_KINDS) else "not a kind"
+            return "hits", (f"kind = {kind} ({what}) is not a hit: ENTER, EXIT or TOUCH (a batch "
+                            "writes MISS for a ray that hit nothing, INVALID for a bad ray)")
+        faces = self._prim_count()
+        if faces is not None and not 0 <= prim < faces:
+            return "hits", f"prim = {prim} is outside [0, {faces}) (the mesh's faces)"
+        for field, values in (("point", point), ("normal", normal)):
+            if not np.isfinite(values).all():
+                return "hits", f"{field} = {value_text(values)} is not finite"
+        if not np.isfinite(d).all():
+            return "directions", f"direction = {value_text(d)} is not finite"
+        if not d.any():
+            return "directions", f"direction = {value_text(d)} is zero"
+        if not normal.any():
+            return "hits", f"normal = {value_text(normal)} is zero (not the record of a hit)"
+        return "hits", (f"no offset of point = {value_text(point)} along its normal leaves the "
+                        f"surface in direction {value_text(d)} (a point not near the surface, a "
+                        "degenerate shape, or a direction running inward along another face "
+                        "through the edge or corner the hit lies on)")
+
+    def _prim_count(self) -> int | None:
+        """The number of valid hit prims (a mesh's faces), None if any is valid."""
+        return None
 
     # ------------------------------------------------------------ internals
 
@@ -647,6 +756,7 @@ class Shape:
         threads: int | None,
         errors: str,
         method: str,
+        progress: bool = False,
     ) -> npt.NDArray[np.void]:
         """Run ``isect_intersect_batch`` over a flat contiguous ray array."""
         name = f"{type(self).__name__}.{method}"
@@ -665,7 +775,7 @@ class Shape:
             status = lib.pyisect_closest(c, rp + lo, hi - lo, opts, hp + lo, bad)
             return int(status), (lo + int(bad[0]) if bad[0] >= 0 else -1)
 
-        results = _batch.run(work, n, nthreads)
+        results = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for status, _ in results:
             check(status, name)
         if raising:
@@ -683,6 +793,7 @@ class Shape:
         any_hit: bool,
         threads: int | None,
         errors: str,
+        progress: bool = False,
     ) -> tuple[npt.NDArray[np.void], tuple[int, ...]]:
         """``intersect`` over separate columns (``_soa_columns``), packed in C."""
         name = f"{type(self).__name__}.intersect"
@@ -705,7 +816,7 @@ class Shape:
                 lo_step, hp_ + a * hi_step, hi_step, b - a, opts, out + a, bad)
             return int(status), (a + int(bad[0]) if bad[0] >= 0 else -1)
 
-        results = _batch.run(work, n, nthreads)
+        results = _batch.run(work, n, nthreads, _progress.reporter(progress, name, n, "ray"))
         for status, _ in results:
             check(status, name)
         if raising:
@@ -717,7 +828,8 @@ class Shape:
                                    lo[index * lo_step], hi[index * hi_step])
                 rp = ffi.from_buffer("isect_ray[]", one)
                 status = lib.isect_intersect(c, rp, opts, ffi.NULL, 0)
-                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS))
+                raise_bad_element(status, name, index, "ray", _ray_arg(rp[0], _RAY_ARGS),
+                                  _ray_detail(rp[0]))
         return hits, shape
 
     def _raise_bad_ray(
@@ -726,7 +838,8 @@ class Shape:
         """Raise the error the scalar call reports for the batch's bad ray,
         naming which of ``args`` (origins, directions, tmin, tmax) holds it."""
         status = lib.isect_intersect(self._c, rp + index, opts, ffi.NULL, 0)
-        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS))
+        raise_bad_element(status, name, index, "ray", _ray_arg(rp[index], args or _RAY_ARGS),
+                          _ray_detail(rp[index]))
 
     def _repr_fields(self) -> str:
         """The constructor arguments, for repr()."""
@@ -759,12 +872,21 @@ class Solid(Shape):
 
     __slots__ = ()
 
-    def contains(self, points: ArrayLike, *, threads: int | None = None) -> Any:
+    def _contains_refusal(self) -> str | None:
+        """Why this shape has no inside after all (an open cylinder), or None."""
+        return None
+
+    def contains(
+        self, points: ArrayLike, *, threads: int | None = None, progress: bool = False
+    ) -> Any:
         """Whether each point lies in the closed solid (``isect_contains_batch``).
 
         Args:
             points: shape (..., 3).
-            threads: split the batch over this many threads.
+            threads: split the batch over this many threads; None (the
+                default): every core; the result is the same for every value.
+            progress: show a progress bar while the batch runs (as for
+                :meth:`~Shape.intersect`).
 
         Returns:
             A bool array of shape (...), or a bool for a single (3,) point.
@@ -774,11 +896,17 @@ class Solid(Shape):
             InvalidArgumentError: points not of shape (..., 3); an open
                 (uncapped) cylinder, which is a thin surface.
         """
-        return self._contains(self._c, points, threads, f"{type(self).__name__}.contains")
+        return self._contains(self._c, points, threads, f"{type(self).__name__}.contains",
+                              progress)
 
-    def _contains(self, c: Any, points: ArrayLike, threads: int | None, name: str) -> Any:
+    def _contains(
+        self, c: Any, points: ArrayLike, threads: int | None, name: str, progress: bool = False
+    ) -> Any:
         """``isect_contains_batch`` with descriptor ``c`` (this shape's, or a
         mesh's with another containment rule)."""
+        refusal = self._contains_refusal()
+        if refusal is not None:
+            raise error_for(int(lib.ISECT_E_ARG), name, detail=refusal)
         pts = as_points(points, 3, "points")
         shape = pts.shape[:-1]
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -791,13 +919,15 @@ class Solid(Shape):
             """One chunk of the batch: the C call over [lo, hi)."""
             return int(lib.isect_contains_batch(c, pp + 3 * lo, hi - lo, ip + lo))
 
-        for status in _batch.run(work, n, as_threads(threads)):
+        nthreads = as_threads(threads)
+        report = _progress.reporter(progress, name, n, "point")
+        for status in _batch.run(work, n, nthreads, report):
             check(status, name)
         bad = inside == _INVALID
         if bad.any():
             index = int(bad.argmax())
             raise_bad_element(lib.isect_contains(c, pp + 3 * index), name, index, "point",
-                              "points")
+                              "points", point_problem(flat[index]))
         result = inside.view(np.bool_).reshape(shape)
         return bool(result) if shape == () else result
 
@@ -844,19 +974,33 @@ def _ray_arg(ray: Any, args: Sequence[str]) -> str:
     return ray_culprit(ray.org, ray.dir, ray.tmin, ray.tmax, args)
 
 
+def point_problem(point: npt.NDArray[np.float64]) -> str | None:
+    """What is wrong with a point a batch refused: its value when not finite;
+    None otherwise (finite, but its image under a transform is not)."""
+    if np.isfinite(point).all():
+        return None
+    return f"{value_text(point)} is not finite"
+
+
+def _ray_detail(ray: Any) -> str | None:
+    """What is wrong with the bad ``isect_ray`` ``ray``, with its values."""
+    return ray_problem(ray.org, ray.dir, ray.tmin, ray.tmax)
+
+
 def raise_bad_element(
-    status: int, name: str, index: int, item: str, arg: str | None = None
+    status: int, name: str, index: int, item: str, arg: str | None = None,
+    detail: str | None = None,
 ) -> None:
     """Raise for element ``index`` that a batch call marked INVALID, with the
     error the matching scalar call reports for it (``status``), naming the
-    argument ``arg`` that holds it."""
+    argument ``arg`` that holds it and, in ``detail``, the value."""
     if status >= 0:
         raise IsectError(
             f"{name}: {item} {index} was marked INVALID by the batch call, "
             "but the scalar call accepts it",
             index=index,
         )
-    raise error_for(status, name, index=index, item=item, arg=arg)
+    raise error_for(status, name, index=index, item=item, arg=arg, detail=detail)
 
 
 def _rebuild(

@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._args import ArrayLike, Rule, as_int32, as_rows, as_rule, as_scalar, as_vector
+from ._errors import too_few, value_text
 from ._isect import lib
 from ._shape import Shape, Solid, readonly_view
 
@@ -28,6 +29,21 @@ def _pack(*parts: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
 def _num(x: object, name: str) -> npt.NDArray[np.float64]:
     """One number as a (1,) float64 array."""
     return np.array([as_scalar(x, name)], dtype=np.float64)
+
+
+def _negative(value: object, name: str) -> str | None:
+    """``"radius = -1.0 is negative ..."`` if ``value`` < 0, else None."""
+    if float(value) < 0.0:  # type: ignore[arg-type]
+        return f"{name} = {value_text(value)} is negative (a radius must be >= 0)"
+    return None
+
+
+def _bad_rule(rule: int) -> str | None:
+    """``"rule = 7 is not a fill rule ..."`` for an unknown fill rule."""
+    if rule in _RULE_NAMES:
+        return None
+    return (f"rule = {rule} is not a fill rule: 'evenodd' (ISECT_EVEN_ODD = "
+            f"{int(lib.ISECT_EVEN_ODD)}) or 'nonzero' (ISECT_NONZERO = {int(lib.ISECT_NONZERO)})")
 
 
 class Plane(Shape):
@@ -74,6 +90,10 @@ class Sphere(Solid):
         """ISECT_E_ARG: a negative radius."""
         return "radius"
 
+    def _check_values(self) -> str | None:
+        """A negative radius."""
+        return _negative(self._part("radius"), "radius")
+
     def __init__(self, center: ArrayLike, radius: float) -> None:
         """Args: center — 3 numbers; radius — >= 0."""
         self._setup(_pack(as_vector(center, 3, "center"), _num(radius, "radius")))
@@ -108,6 +128,15 @@ class Box(Solid):
     def _blame_arg(self) -> str | None:
         """ISECT_E_ARG: lo > hi in some axis."""
         return "lo, hi"
+
+    def _check_values(self) -> str | None:
+        """lo > hi in some axis (the first)."""
+        lo, hi = self._part("lo"), self._part("hi")
+        for axis in range(3):
+            if lo[axis] > hi[axis]:
+                return (f"lo[{axis}] = {value_text(lo[axis])} > hi[{axis}] = "
+                        f"{value_text(hi[axis])} (a box needs lo <= hi in every axis)")
+        return None
 
     def __init__(self, lo: ArrayLike, hi: ArrayLike) -> None:
         """Args: lo, hi — the minimum and maximum corners, 3 numbers each."""
@@ -187,6 +216,10 @@ class Polygon(Shape):
         """ISECT_E_ARG: fewer than 3 vertices, or an unknown rule."""
         return "vertices" if self._n < 3 else "rule"
 
+    def _check_counts(self) -> str | None:
+        """Fewer than 3 vertices, or an unknown rule."""
+        return too_few(self._n, 3, "vertices", "a polygon") or _bad_rule(self._flags)
+
     def __init__(self, vertices: ArrayLike, rule: Rule = "evenodd") -> None:
         """Args: vertices — (n, 3); rule — "evenodd" or "nonzero"."""
         v = as_rows(vertices, 3, "vertices")
@@ -220,9 +253,15 @@ class ConvexPolyhedron(Solid):
     _type = lib.ISECT_CONVEX
     _layout = (("planes", 0),)
 
+    _row = 4
+
     def _blame_arg(self) -> str | None:
         """ISECT_E_ARG: no plane."""
         return "planes"
+
+    def _check_counts(self) -> str | None:
+        """No plane."""
+        return too_few(self._n, 1, "planes", "a convex polyhedron")
 
     def __init__(self, planes: ArrayLike) -> None:
         """Args: planes — (m, 4) rows a, b, c, d."""
@@ -255,6 +294,24 @@ class Cylinder(Solid):
     def _blame_arg(self) -> str | None:
         """ISECT_E_ARG: a capped flag other than 0 / 1, or a negative radius."""
         return "capped" if self._flags not in (0, lib.ISECT_CAPPED) else "radius"
+
+    def _check_counts(self) -> str | None:
+        """A capped flag other than 0 and ISECT_CAPPED."""
+        if self._flags in (0, lib.ISECT_CAPPED):
+            return None
+        return (f"capped = {self._flags} is not True, False, 0 or ISECT_CAPPED "
+                f"({int(lib.ISECT_CAPPED)})")
+
+    def _check_values(self) -> str | None:
+        """A negative radius."""
+        return _negative(self._part("radius"), "radius")
+
+    def _contains_refusal(self) -> str | None:
+        """An open cylinder is a thin surface."""
+        if self._flags == lib.ISECT_CAPPED:
+            return None
+        return ("capped = False: an open cylinder is a thin surface (its side alone) and has "
+                "no inside; make it with capped=True for contains")
 
     def __init__(self, p0: ArrayLike, p1: ArrayLike, radius: float, capped: bool = True) -> None:
         """Args: p0, p1 — the axis end points; radius — >= 0; capped — closed or open."""
@@ -305,6 +362,10 @@ class InfiniteCylinder(Solid):
         """ISECT_E_ARG: a negative radius."""
         return "radius"
 
+    def _check_values(self) -> str | None:
+        """A negative radius."""
+        return _negative(self._part("radius"), "radius")
+
     def __init__(self, point: ArrayLike, axis: ArrayLike, radius: float) -> None:
         """Args: point — on the axis; axis — its direction (any length); radius — >= 0."""
         data = _pack(
@@ -344,6 +405,15 @@ class Ellipsoid(Solid):
     def _blame_arg(self) -> str | None:
         """ISECT_E_ARG: a negative radius."""
         return "radii"
+
+    def _check_values(self) -> str | None:
+        """A negative radius (the first)."""
+        radii = self._part("radii")
+        for axis in range(3):
+            found = _negative(radii[axis], f"radii[{axis}]")
+            if found is not None:
+                return found
+        return None
 
     def __init__(self, center: ArrayLike, radii: ArrayLike) -> None:
         """Args: center — 3 numbers; radii — 3 semi-axes >= 0."""
