@@ -36,13 +36,20 @@ static void affine_vector(const double a[16], const double v[3], double out[3])
 }
 
 /* n by the transpose of a's linear part: with a = M^-1 this is M^-T n, which
- * keeps n perpendicular to the mapped surface and on the same (outer) side. */
+ * keeps n perpendicular to the mapped surface and on the same (outer) side.
+ * Made unit by v3_normalize, then one Newton step for 1/|n| about 1,
+ * n (3 - n.n)/2: v3_normalize alone leaves |n| - 1 up to ~1.0x ulp (its
+ * square root and three divisions), the step takes it to the rounding of
+ * the last multiplication. lane_hit_to_world repeats it bit for bit. */
 static void affine_normal(const double a[16], const double n[3], double out[3])
 {
     double r[3];
     for (int i = 0; i < 3; i++)
         r[i] = a[i] * n[0] + a[4 + i] * n[1] + a[8 + i] * n[2];
     v3_normalize(out, r);
+    double f = 1.5 - 0.5 * v3_dot(out, out);
+    for (int k = 0; k < 3; k++)
+        out[k] *= f;
 }
 
 ISECT_API int isect_xform_init(isect_xform *x, const double m[16])

@@ -106,7 +106,7 @@ static ALWAYS_INLINE void lane_ray_xform(const isect_xform *x, lane_ray *lr)
  * (core/xform.c): points by m (((m0 p0 + m1 p1) + m2 p2) + m3), normals by
  * the transpose of inv's linear part, then v3_normalize (divided by the
  * largest magnitude, then by the length; zero when that is not positive
- * and finite). */
+ * and finite) and one Newton step, n (3 - n.n)/2. */
 static ALWAYS_INLINE void lane_hit_to_world(const isect_xform *x, lane_hit *h)
 {
     const double *m = x->m, *a = x->inv;
@@ -123,9 +123,15 @@ static ALWAYS_INLINE void lane_hit_to_world(const isect_xform *x, lane_hit *h)
     vm usable = vm_and(vd_gt(big, vd_zero()), vd_le(big, vd_set1(1.7976931348623157e308)));
     vd x0 = vd_div(r[0], big), x1 = vd_div(r[1], big), x2 = vd_div(r[2], big);
     vd len = vd_sqrt(vd_add(vd_add(vd_mul(x0, x0), vd_mul(x1, x1)), vd_mul(x2, x2)));
-    h->normal[0] = vd_sel(usable, vd_div(x0, len), vd_zero());
-    h->normal[1] = vd_sel(usable, vd_div(x1, len), vd_zero());
-    h->normal[2] = vd_sel(usable, vd_div(x2, len), vd_zero());
+    vd n0 = vd_sel(usable, vd_div(x0, len), vd_zero());
+    vd n1 = vd_sel(usable, vd_div(x1, len), vd_zero());
+    vd n2 = vd_sel(usable, vd_div(x2, len), vd_zero());
+    /* affine_normal's Newton step, n (3 - n.n)/2 */
+    vd nn = vd_add(vd_add(vd_mul(n0, n0), vd_mul(n1, n1)), vd_mul(n2, n2));
+    vd f = vd_sub(vd_set1(1.5), vd_mul(vd_set1(0.5), nn));
+    h->normal[0] = vd_mul(n0, f);
+    h->normal[1] = vd_mul(n1, f);
+    h->normal[2] = vd_mul(n2, f);
     for (int i = 0; i < 3; i++)
         h->point[i] = p[i];
 }
