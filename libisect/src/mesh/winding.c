@@ -266,14 +266,29 @@ static const double *prim_vertex(const isect_mesh *m, const mesh_prim *pr, int i
 
 /* Adds prim pr's solid angle at q (its fan's), and its bound when
  * want_bound. */
-static void prim_solid_angle(const isect_mesh *m, const mesh_prim *pr, const double q[3],
-                             int want_bound, angle_sum *s)
+static void prim_solid_angle(const isect_mesh *m, const mesh_prim *pr, const isect_xform *x,
+                             const double q[3], int want_bound, angle_sum *s)
 {
-    const double *v0 = prim_vertex(m, pr, 0);
+    /* x: the vertices' world images, each rounded once (x NULL: as stored) */
+    double v[3][3];
+    const double *v0 = prim_vertex(m, pr, 0), *v1, *v2 = prim_vertex(m, pr, 1);
+    if (x != NULL) {
+        xform_point_to_world(x, v0, v[0]);
+        xform_point_to_world(x, v2, v[2]);
+        v0 = v[0];
+        v2 = v[2];
+    }
     for (int j = 1; j + 1 < pr->nverts; j++) {
         double bound;
-        double omega = triangle_solid_angle(v0, prim_vertex(m, pr, j), prim_vertex(m, pr, j + 1),
-                                            q, want_bound, &bound);
+        v1 = v2;
+        v2 = prim_vertex(m, pr, j + 1);
+        if (x != NULL) {
+            memcpy(v[1], v1, sizeof v[1]);
+            xform_point_to_world(x, v2, v[2]);
+            v1 = v[1];
+            v2 = v[2];
+        }
+        double omega = triangle_solid_angle(v0, v1, v2, q, want_bound, &bound);
         angle_sum_add(s, omega, bound);
     }
 }
@@ -286,13 +301,20 @@ static double winding_of(const angle_sum *s, double *bound)
     return w;
 }
 
-double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound)
+/* Every face's angle at q, through x (NULL: object space). */
+static double direct_sum(const isect_mesh *m, const isect_xform *x, const double q[3],
+                         double *bound)
 {
     /* Faces of zero area (left out of the BVH's prims) subtend none. */
     angle_sum s = { { 0.0, 0.0 }, 0.0 };
     for (int64_t i = 0; i < m->prim_count; i++)
-        prim_solid_angle(m, &m->prims[i], q, bound != NULL, &s);
+        prim_solid_angle(m, &m->prims[i], x, q, bound != NULL, &s);
     return winding_of(&s, bound);
+}
+
+double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound)
+{
+    return direct_sum(m, NULL, q, bound);
 }
 
 /* Direct summation over the faces mapped to world space by x (q a world
@@ -302,20 +324,7 @@ double mesh_winding_direct(const isect_mesh *m, const double q[3], double *bound
  * about 2u of its coordinates), then the faces are summed as above. */
 double mesh_winding_direct_world(const isect_mesh *m, const isect_xform *x, const double q[3])
 {
-    angle_sum s = { { 0.0, 0.0 }, 0.0 };
-    for (int64_t i = 0; i < m->prim_count; i++) {
-        const mesh_prim *pr = &m->prims[i];
-        double v0[3], v1[3], v2[3];
-        xform_point_to_world(x, prim_vertex(m, pr, 0), v0);
-        xform_point_to_world(x, prim_vertex(m, pr, 1), v2);
-        for (int j = 1; j + 1 < pr->nverts; j++) {
-            double bound;
-            memcpy(v1, v2, sizeof v1);
-            xform_point_to_world(x, prim_vertex(m, pr, j + 1), v2);
-            angle_sum_add(&s, triangle_solid_angle(v0, v1, v2, q, 0, &bound), 0.0);
-        }
-    }
-    return winding_of(&s, NULL);
+    return direct_sum(m, x, q, NULL);
 }
 
 /* ----------------------------------------------------------- far field */
@@ -691,7 +700,7 @@ static double winding_far_pass(const isect_mesh *m, const mesh_winding_tree *t, 
             } else {
                 int32_t first = ~n->child[c];
                 for (int i = 0; i < n->count[c]; i++)
-                    prim_solid_angle(m, &m->prims[first + i], q, bound != NULL, &s);
+                    prim_solid_angle(m, &m->prims[first + i], NULL, q, bound != NULL, &s);
             }
         }
         if (sp == 0)
