@@ -272,7 +272,7 @@ static int mesh_build(isect_mesh *m)
         order = malloc((size_t)(it.count > 0 ? it.count : 1) * sizeof *order);
         status = order == NULL ? ISECT_E_NOMEM
                                : bvh_build((const float (*)[6])it.box, it.flags, it.count,
-                                           order, &m->tree);
+                                           BVH_MAX_LEAF, order, &m->tree);
     }
     if (status == ISECT_OK) {
         m->prims = malloc((size_t)(it.count > 0 ? it.count : 1) * sizeof *m->prims);

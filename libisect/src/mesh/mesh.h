@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * mesh.h — the mesh object and what its files share: mesh.c (creation,
- * validation, per-face data), mesh_query.c (ray queries and containment over
- * the BVH), mesh_check.c (topology report), and the queries the dispatcher
- * (api/shape.c) calls.
+ * validation, per-face data), mesh_query.c (ray queries over the BVH),
+ * mesh_contains.c (containment), mesh_check.c (topology report),
+ * winding.c (generalized winding numbers), and the queries the
+ * dispatcher (api/shape.c) calls.
  *
  * Faces. A face of 3 vertices is a triangle, tested by triangle_hit;
  * a face of more is a planar polygon, tested by polygon_hit_plane_framed
@@ -17,7 +18,7 @@
 #ifndef ISECT_MESH_H
 #define ISECT_MESH_H
 
-#include "mesh/bvh.h"
+#include "core/bvh.h"
 #include "prim/planar.h"
 
 /* One face in BVH leaf order, with what the hot loop needs inline. 104
@@ -110,7 +111,7 @@ int     mesh_side_test(const isect_shape *s, const double p[3], int32_t prim);
  * X_tangent_side). */
 int     mesh_tangent_side(const isect_shape *s, const double d[3], int32_t prim);
 /* The signed count of the exact crossings of the perturbed +x ray from p
- * (mesh_query.c: each crossing +1 where the ray leaves through a face's
+ * (mesh_contains.c: each crossing +1 where the ray leaves through a face's
  * front, -1 where it enters): for a closed, consistently oriented mesh the
  * winding number of p, exactly. Returns 1 without a count when p lies on
  * the surface (a face, edge or vertex), else 0. */

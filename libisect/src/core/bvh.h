@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * bvh.h — an 8-wide bounding-volume hierarchy over boxed items (the faces of
- * a mesh): built as a binary tree by binned SAH (Wald, "On fast
- * Construction of SAH-based Bounding Volume Hierarchies", IRT 2007), then
- * collapsed to at most eight children per node, the shape of least SAH
- * cost found by the dynamic programme of Ylitie, Karras & Laine (HPG 2017;
- * it may also merge a small subtree into one leaf), about a third of the
- * binary depth: a traversal pays per
- * node visited (a cache miss on a large mesh, the branches of the visit on
- * any), so fewer, wider nodes are what makes it fast. Eight boxes are one
+ * bvh.h — an 8-wide bounding-volume hierarchy over boxed items (the faces
+ * of a mesh, the shapes of a scene): built as a binary tree by binned SAH
+ * (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies",
+ * IRT 2007), then collapsed to at most eight children per node, the shape
+ * of least SAH cost found by the dynamic programme of Ylitie, Karras &
+ * Laine (HPG 2017; it may also merge a small subtree into one leaf), about
+ * a third of the binary depth: a traversal pays per node visited (a cache
+ * miss on a large mesh, the branches of the visit on any), so fewer, wider
+ * nodes are what makes it fast. Eight boxes are one
  * AVX register of floats or two SSE ones (measured on the icosphere
  * benchmark: with AVX 4-8 % faster than four children per node, with SSE
  * alone as fast).
@@ -69,11 +69,13 @@ typedef struct bvh {
 void bvh_box_from_double(const double lo[3], const double hi[3], float box[6]);
 
 /* Build over n >= 0 items with boxes[n][6] (float, already outward) and
- * flags[n] (may be NULL). On success order[0..n) is the leaf order: leaf
- * items [i, i + count) are the input items order[i ..]. 0, or
- * ISECT_E_NOMEM (nothing allocated). n must be below 2^31. */
-int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t *order,
-              bvh *out);
+ * flags[n] (may be NULL), leaves of at most max_leaf items (clamped to
+ * 1..BVH_MAX_LEAF: a mesh's faces are cheap to test and share leaves, a
+ * scene's shapes are not and get a box each). On success order[0..n) is
+ * the leaf order: leaf items [i, i + count) are the input items order[i
+ * ..]. 0, or ISECT_E_NOMEM (nothing allocated). n must be below 2^31. */
+int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int max_leaf,
+              int32_t *order, bvh *out);
 
 void bvh_free(bvh *b);
 

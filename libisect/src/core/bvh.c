@@ -11,7 +11,7 @@
  * the bins and no other sweep is needed. A range becomes a leaf when it is
  * small enough and no split is cheaper than testing every item.
  */
-#include "mesh/bvh.h"
+#include "core/bvh.h"
 
 #include "isect.h"
 
@@ -69,6 +69,7 @@ typedef struct builder {
     build_ref *refs;
     bin_node  *nodes;
     int64_t    node_count;
+    int        max_leaf; /* items a leaf may hold, 1..BVH_MAX_LEAF */
 } builder;
 
 typedef struct split {
@@ -437,7 +438,7 @@ static uint8_t build_range(builder *b, int64_t begin, int64_t end, const aabbf *
     }
     /* Leaf when small and no split beats testing every item:
      * n <= COST_TRAVERSE + (aL nL + aR nR) / a (all in item-test units). */
-    if (n <= BVH_MAX_LEAF
+    if (n <= b->max_leaf
         && (s.axis < 0 || !(s.cost < half_area(box) * ((double)n - COST_TRAVERSE)))) {
         uint8_t flags = 0;
         for (int64_t i = begin; i < end; i++)
@@ -527,6 +528,7 @@ typedef struct collapser {
     collapse_entry *table; /* per binary inner node */
     bvh_node       *nodes; /* NULL: the counting pass */
     int64_t         node_count;
+    int             max_leaf;
 } collapser;
 
 static double box6_area(const float box[6])
@@ -593,7 +595,7 @@ static void collapse_cost(collapser *c, int32_t b, double area)
     double node = area * COLLAPSE_NODE + best_split[BVH_WIDTH];
     double one = node;
     e->leaf = 0;
-    if (e->items <= BVH_MAX_LEAF) {
+    if (e->items <= c->max_leaf) {
         double leaf = leaf_cost(area, e->items);
         if (leaf < node) {
             one = leaf;
@@ -674,8 +676,8 @@ static int32_t collapse_node(collapser *c, int32_t b)
     return index;
 }
 
-int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t *order,
-              bvh *out)
+int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int max_leaf,
+              int32_t *order, bvh *out)
 {
     out->nodes = NULL;
     out->node_count = 0;
@@ -685,6 +687,7 @@ int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t 
     /* At most n - 1 inner nodes, or the one root of a single leaf. */
     b.nodes = malloc((size_t)(n > 1 ? n - 1 : 1) * sizeof *b.nodes);
     b.node_count = 0;
+    b.max_leaf = max_leaf < 1 ? 1 : max_leaf > BVH_MAX_LEAF ? BVH_MAX_LEAF : max_leaf;
     if (b.refs == NULL || b.nodes == NULL) {
         free(b.refs);
         free(b.nodes);
@@ -733,6 +736,7 @@ int bvh_build(const float (*boxes)[6], const uint8_t *flags, int64_t n, int32_t 
     c.table = malloc((size_t)b.node_count * sizeof *c.table);
     c.nodes = NULL;
     c.node_count = 0;
+    c.max_leaf = b.max_leaf;
     if (c.table == NULL) {
         free(b.nodes);
         return ISECT_E_NOMEM;
